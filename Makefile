@@ -1,0 +1,33 @@
+# The two commands of the README: `make demo` and `make test`.
+# Both install what is missing (Debian packages), configure and build.
+BUILD ?= build
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPEDESIS_WERROR=ON
+
+.PHONY: all deps build demo test validation bench format clean
+
+all: build
+
+deps:
+	@./scripts/install-deps.sh
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	./$(BUILD)/pedesis run examples/demo_relaxation_2d.toml --out runs/demo
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE validation
+
+validation: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L validation
+
+format:
+	find src apps tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD)

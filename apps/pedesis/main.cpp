@@ -1,0 +1,34 @@
+// pedesis command line: run, bench.
+#include "bench_event.hpp"
+
+#include "pedesis/core/error.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <exception>
+
+int main(int argc, char** argv) {
+    CLI::App app{"pedesis: particle dynamics of gases and active matter"};
+    app.require_subcommand(1);
+    auto* bench = app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");
+    bench->require_subcommand(1);
+    pedesis::cli::add_bench_event(*bench);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? 0 : pedesis::exit_input_error;
+    } catch (const pedesis::InputError& e) {
+        fmt::print(stderr, "pedesis: error: {}\n", e.what());
+        return pedesis::exit_input_error;
+    } catch (const pedesis::RunError& e) {
+        fmt::print(stderr, "pedesis: run stopped: {}\n", e.what());
+        return pedesis::exit_run_error;
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "pedesis: internal error: {}\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs pedesis' build and test dependencies from Debian's packages.
+# Idempotent: packages already present are not touched, so `make` stays fast.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  googletest libgtest-dev
+  nlohmann-json3-dev libtomlplusplus-dev libcli11-dev libfmt-dev librandom123-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq || echo "install-deps: apt-get update failed; trying the cached package lists"
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,138 @@
+#pragma once
+// Exact event-driven dynamics of hard disks (D = 2) and spheres (D = 3).
+//
+// Design (after Smallenburg, Eur. Phys. J. E 45, 22 (2022), rewritten here):
+// - one pending event per particle: its earliest pair collision, wall collision or
+//   neighbour-shell exit, in an indexed heap;
+// - positions are advanced lazily: particle i stores r_i at its own time t_i;
+// - each particle keeps a neighbour list of everyone whose list centre lies within
+//   sigma_ij + skin of its own; a particle rebuilds its list (alone) when it has moved
+//   skin/2 from its centre, which keeps the lists exact without global rebuilds;
+// - a collision counter per particle invalidates events whose partner has collided
+//   since the prediction (no event is ever removed from the calendar).
+#include "pedesis/core/box.hpp"
+#include "pedesis/core/particles.hpp"
+#include "pedesis/event/event_queue.hpp"
+#include "pedesis/spatial/cell_list.hpp"
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <limits>
+#include <vector>
+
+namespace pedesis {
+
+struct EventParams {
+    double restitution = 1.0;      // particle-particle, xi in [0, 1]
+    double wall_restitution = 1.0; // particle-wall
+    double tc = 0.0;               // TC model: collisions within tc of a particle's last
+                                   // collision are elastic (0 disables)
+    double skin = -1.0;            // neighbour-list skin; < 0 chooses 0.5 x mean diameter
+    bool check_overlaps = false;   // debug: verify no overlap after every collision
+};
+
+// Running totals since the engine was created (or restored).
+template <int D> struct EventCounters {
+    std::uint64_t pair_collisions = 0;
+    std::uint64_t wall_collisions = 0;
+    std::uint64_t list_rebuilds = 0;
+    std::uint64_t stale_events = 0;
+    Vec<D> virial{};                           // sum over collisions of J n_a r_ij,a
+    std::array<std::array<double, 2>, D> wall_impulse{}; // momentum given to each wall
+    double energy_lost = 0.0;
+};
+
+enum class StopReason { time, collisions, energy, no_events };
+
+struct StopLimits {
+    double time = std::numeric_limits<double>::infinity();
+    std::uint64_t pair_collisions = std::numeric_limits<std::uint64_t>::max();
+    double min_kinetic_energy = -1.0;
+};
+
+template <int D> class EventEngine {
+  public:
+    EventEngine(ParticleStore<D> particles, const Box<D>& box, const EventParams& params);
+
+    StopReason run(const StopLimits& limits);
+
+    double time() const { return now_; }
+    const Box<D>& box() const { return box_; }
+    const EventParams& params() const { return params_; }
+    const EventCounters<D>& counters() const { return counters_; }
+    double kinetic_energy() const { return kinetic_; }
+    std::size_t size() const { return p_.size(); }
+    double skin() const { return skin_; }
+
+    // Position of particle i (storage index) at the current time, wrapped into the box.
+    Vec<D> position_now(std::size_t i) const;
+    // All particles at the current time, wrapped, in storage order.
+    ParticleStore<D> snapshot() const;
+    // Particle data whose velocities, tags and species are current (positions are not).
+    const ParticleStore<D>& lazy_particles() const { return p_; }
+
+    // Throws RunError naming the pair if any two particles overlap by more than a
+    // relative tolerance (debug and tests).
+    void check_no_overlap(double rel_tol = 1e-9) const;
+
+    std::size_t memory_bytes() const;
+
+    // Exact state, so that a restored engine continues bit for bit.
+    void save(std::ostream& out) const;
+    static EventEngine load(std::istream& in, const EventParams& params);
+
+  private:
+    EventEngine() = default;
+    static constexpr std::int32_t no_event = -1;
+    static constexpr std::int32_t shell_event = -2;
+    static constexpr std::int32_t wall_event_base = -3; // -3 - (2 axis + side)
+
+    void setup();
+    void build_all_lists();
+    void add_neighbor(std::uint32_t i, std::uint32_t j);
+    void remove_neighbor(std::uint32_t i, std::uint32_t j);
+    void grow_lists();
+    void predict(std::uint32_t i);
+    void advance(std::uint32_t i);
+    void process_pair(std::uint32_t i, std::uint32_t j);
+    void process_wall(std::uint32_t i, std::int32_t code);
+    void rebuild_list(std::uint32_t i);
+    void check_particle_overlap(std::uint32_t i, double rel_tol) const;
+    double contact(std::uint32_t i, std::uint32_t j) const {
+        return radius_[p_.species[i]] + radius_[p_.species[j]];
+    }
+
+    ParticleStore<D> p_; // positions here are r_i at time t_i
+    Box<D> box_;
+    EventParams params_;
+    double now_ = 0.0;
+    double skin_ = 0.0;
+    double shell_ = 0.0; // skin / 2: how far a particle may stray from its centre
+    double kinetic_ = 0.0;
+
+    std::vector<double> radius_;   // per species
+    std::vector<double> inv_mass_; // per species
+
+    std::vector<double> t_;           // time of r_i
+    std::vector<Vec<D>> centre_;      // neighbour-list centre
+    std::vector<std::uint32_t> count_; // collision counter
+    std::vector<double> ev_time_;
+    std::vector<std::int32_t> ev_partner_;
+    std::vector<std::uint32_t> ev_count_;
+    std::vector<double> last_collision_; // only with the TC model
+
+    std::uint32_t stride_ = 0; // neighbour slots per particle
+    std::vector<std::uint16_t> n_nbr_;
+    std::vector<std::uint32_t> nbr_;
+
+    CellList<D> cells_; // over list centres
+    EventQueue queue_;
+    EventCounters<D> counters_;
+    std::uint64_t stalled_events_ = 0;
+};
+
+extern template class EventEngine<2>;
+extern template class EventEngine<3>;
+
+} // namespace pedesis

@@ -1,0 +1,166 @@
+#pragma once
+// A cell list shared by every engine. Cells are at least `min_cell` wide, so all
+// pairs closer than min_cell sit in the same or adjacent cells. Correct for any box:
+// on axes with fewer than 3 cells the neighbouring cells are de-duplicated, and wall
+// axes do not wrap. Supports incremental insert/remove (the event engine moves one
+// particle at a time) as well as a full rebuild.
+#include "pedesis/core/box.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace pedesis {
+
+template <int D> class CellList {
+  public:
+    static constexpr std::int32_t none = -1;
+
+    CellList() = default;
+    CellList(const Box<D>& box, double min_cell) : box_(box) {
+        std::size_t total = 1;
+        for (int a = 0; a < D; ++a) {
+            int n = static_cast<int>(box.length(a) / min_cell);
+            if (n < 1) n = 1;
+            // cap the grid so that huge sparse boxes do not allocate absurd memory
+            if (n > 4096) n = 4096;
+            n_[a] = n;
+            inv_w_[a] = n / box.length(a);
+            stride_[a] = static_cast<std::int32_t>(total);
+            total *= static_cast<std::size_t>(n);
+        }
+        head_.assign(total, none);
+    }
+
+    std::size_t cell_count() const { return head_.size(); }
+    int cells_along(int a) const { return n_[a]; }
+    double cell_width(int a) const { return box_.length(a) / n_[a]; }
+
+    std::int32_t cell_index(const Vec<D>& r) const {
+        std::int32_t idx = 0;
+        for (int a = 0; a < D; ++a) idx += coord(r, a) * stride_[a];
+        return idx;
+    }
+
+    void clear(std::size_t n_particles) {
+        std::fill(head_.begin(), head_.end(), none);
+        next_.assign(n_particles, none);
+        cell_of_.assign(n_particles, none);
+    }
+
+    void build(const std::vector<Vec<D>>& pos) {
+        clear(pos.size());
+        for (std::size_t i = pos.size(); i-- > 0;) insert(static_cast<std::uint32_t>(i), pos[i]);
+    }
+
+    void insert(std::uint32_t i, const Vec<D>& r) {
+        const std::int32_t c = cell_index(r);
+        next_[i] = head_[c];
+        head_[c] = static_cast<std::int32_t>(i);
+        cell_of_[i] = c;
+    }
+
+    void remove(std::uint32_t i) {
+        std::int32_t* link = &head_[cell_of_[i]];
+        while (*link != static_cast<std::int32_t>(i)) link = &next_[*link];
+        *link = next_[i];
+        next_[i] = none;
+        cell_of_[i] = none;
+    }
+
+    std::int32_t head(std::int32_t cell) const { return head_[cell]; }
+    std::int32_t next(std::uint32_t i) const { return next_[i]; }
+    std::int32_t cell_of(std::uint32_t i) const { return cell_of_[i]; }
+
+    // Calls f(cell) once for every distinct cell adjacent to (or equal to) `cell`.
+    template <class F> void for_each_neighbor_cell(std::int32_t cell, F&& f) const {
+        std::array<std::array<std::int32_t, 3>, D> offs;
+        std::array<int, D> count;
+        for (int a = 0; a < D; ++a) {
+            const int c = (cell / stride_[a]) % n_[a];
+            count[a] = 0;
+            const int n = n_[a];
+            if (box_.periodic(a)) {
+                if (n == 1) {
+                    offs[a][count[a]++] = 0;
+                } else if (n == 2) {
+                    offs[a][count[a]++] = c;
+                    offs[a][count[a]++] = 1 - c;
+                } else {
+                    offs[a][count[a]++] = (c + n - 1) % n;
+                    offs[a][count[a]++] = c;
+                    offs[a][count[a]++] = (c + 1) % n;
+                }
+            } else {
+                for (int d = -1; d <= 1; ++d)
+                    if (c + d >= 0 && c + d < n) offs[a][count[a]++] = c + d;
+            }
+            for (int k = 0; k < count[a]; ++k) offs[a][k] *= stride_[a];
+        }
+        std::array<int, D> k{};
+        while (true) {
+            std::int32_t idx = 0;
+            for (int a = 0; a < D; ++a) idx += offs[a][k[a]];
+            f(idx);
+            int a = 0;
+            while (a < D && ++k[a] == count[a]) k[a++] = 0;
+            if (a == D) break;
+        }
+    }
+
+    // Calls f(j) for every particle in the cells around position r.
+    template <class F> void for_each_near(const Vec<D>& r, F&& f) const {
+        for_each_neighbor_cell(cell_index(r), [&](std::int32_t c) {
+            for (std::int32_t j = head_[c]; j != none; j = next_[j]) f(static_cast<std::uint32_t>(j));
+        });
+    }
+
+    // Exact membership and order, for checkpoints (scan order decides ties).
+    template <class Out> void save(Out&& put) const {
+        put(head_);
+        put(next_);
+        put(cell_of_);
+    }
+    template <class In> void load(In&& get) {
+        const std::size_t cells = head_.size();
+        get(head_);
+        get(next_);
+        get(cell_of_);
+        const auto n = static_cast<std::int32_t>(next_.size());
+        bool ok = head_.size() == cells && next_.size() == cell_of_.size();
+        for (auto h : head_) ok = ok && h >= none && h < n;
+        for (auto h : next_) ok = ok && h >= none && h < n;
+        for (auto c : cell_of_) ok = ok && c >= 0 && c < static_cast<std::int32_t>(cells);
+        if (!ok) throw InputError("checkpoint: cell list does not match the box (corrupt file)");
+    }
+
+    std::size_t memory_bytes() const {
+        return head_.capacity() * sizeof(std::int32_t) + next_.capacity() * sizeof(std::int32_t) +
+               cell_of_.capacity() * sizeof(std::int32_t);
+    }
+
+  private:
+    int coord(const Vec<D>& r, int a) const {
+        int c = static_cast<int>(std::floor((r[a] - box_.lo(a)) * inv_w_[a]));
+        if (box_.periodic(a)) {
+            c %= n_[a];
+            if (c < 0) c += n_[a];
+        } else {
+            // positions on a wall (or a rounding error past it) belong to the edge cell
+            if (c < 0) c = 0;
+            if (c >= n_[a]) c = n_[a] - 1;
+        }
+        return c;
+    }
+
+    Box<D> box_;
+    std::array<int, D> n_{};
+    std::array<double, D> inv_w_{};
+    std::array<std::int32_t, D> stride_{};
+    std::vector<std::int32_t> head_;
+    std::vector<std::int32_t> next_;
+    std::vector<std::int32_t> cell_of_;
+};
+
+} // namespace pedesis
