@@ -1,5 +1,6 @@
-// pedesis command line: run, bench.
+// pedesis command line: run, bench. Input errors exit with 2, stopped runs with 3.
 #include "bench_event.hpp"
+#include "run_command.hpp"
 
 #include "pedesis/core/error.hpp"
 
@@ -12,6 +13,7 @@
 int main(int argc, char** argv) {
     CLI::App app{"pedesis: particle dynamics of gases and active matter"};
     app.require_subcommand(1);
+    pedesis::cli::add_run_command(app);
     auto* bench = app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");
     bench->require_subcommand(1);
     pedesis::cli::add_bench_event(*bench);

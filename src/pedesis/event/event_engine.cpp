@@ -59,7 +59,7 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     }
     // The minimum image of a colliding pair must be unique over a whole list
     // lifetime: L/2 > contact + 2 skin. Small periodic boxes get a smaller skin.
-    skin_ = params_.skin >= 0.0 ? params_.skin : 0.5 * mean_diameter;
+    skin_ = params_.skin >= 0.0 ? params_.skin : default_skin(mean_diameter);
     const double max_contact = 2.0 * max_radius;
     if (std::isfinite(min_periodic)) {
         const double room = 0.5 * min_periodic - max_contact;
@@ -95,6 +95,18 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     build_all_lists();
     check_no_overlap(1e-10);
     setup();
+}
+
+// A skin that holds about 8 (2D) or 12 (3D) neighbours per list, and at least half a
+// diameter: in dense fluids that is the 1.5-diameter shell of Smallenburg's code; in
+// dilute gases it grows with the mean free path, so lists are not rebuilt several
+// times per free flight.
+template <int D> double EventEngine<D>::default_skin(double mean_diameter) const {
+    const double n = static_cast<double>(p_.size()) / box_.volume();
+    const double wanted = D == 2 ? 8.0 : 12.0;
+    const double ball = D == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi;
+    const double reach = std::pow(wanted / (ball * n), 1.0 / D);
+    return std::max(0.5 * mean_diameter, reach - mean_diameter);
 }
 
 template <int D> void EventEngine<D>::build_all_lists() {

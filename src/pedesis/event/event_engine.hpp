@@ -28,7 +28,7 @@ struct EventParams {
     double wall_restitution = 1.0; // particle-wall
     double tc = 0.0;               // TC model: collisions within tc of a particle's last
                                    // collision are elastic (0 disables)
-    double skin = -1.0;            // neighbour-list skin; < 0 chooses 0.5 x mean diameter
+    double skin = -1.0;            // neighbour-list skin; < 0 chooses one from the density
     bool check_overlaps = false;   // debug: verify no overlap after every collision
 };
 
@@ -89,6 +89,7 @@ template <int D> class EventEngine {
     static constexpr std::int32_t wall_event_base = -3; // -3 - (2 axis + side)
 
     void setup();
+    double default_skin(double mean_diameter) const;
     void build_all_lists();
     void add_neighbor(std::uint32_t i, std::uint32_t j);
     void remove_neighbor(std::uint32_t i, std::uint32_t j);

@@ -1,0 +1,53 @@
+#pragma once
+// Output files that are either complete or absent. A reader (a person, a plotting
+// script, a restart) must never mistake a half-written file for a finished one,
+// whether the run failed, was stopped, or was killed.
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace pedesis {
+
+// Writes `body`'s output to a temporary file beside `path` and renames it onto
+// `path` only if everything succeeded; rename within one directory is atomic on
+// POSIX, so `path` holds either the old contents or the complete new ones.
+// On failure the temporary is removed and an InputError naming `path` is thrown;
+// an InputError or RunError thrown by `body` itself passes through unchanged.
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream&)>& body, bool binary = false);
+
+// A trajectory that grows frame by frame. Frames go to `path` + ".part"; only
+// commit() gives the file its final name, so a run that dies leaves a ".part"
+// file (useful for salvage) and nothing that looks complete.
+class AtomicAppendFile {
+  public:
+    // Truncates any earlier ".part" and removes an earlier file at `path`: a stale
+    // complete file from a previous run must not pass for this run's output.
+    explicit AtomicAppendFile(std::filesystem::path path);
+    ~AtomicAppendFile();
+
+    AtomicAppendFile(const AtomicAppendFile&) = delete;
+    AtomicAppendFile& operator=(const AtomicAppendFile&) = delete;
+
+    // One write per frame, then a flush, so a kill leaves whole frames plus at
+    // most one torn frame at the end of the ".part" file.
+    void append(const std::string& frame);
+
+    // Renames the ".part" file onto the final path. Call it on a normal end and on
+    // a stopped run; a second call does nothing.
+    void commit();
+
+    const std::filesystem::path& path() const { return path_; }
+    const std::filesystem::path& part_path() const { return part_; }
+    bool committed() const { return committed_; }
+
+  private:
+    std::filesystem::path path_;
+    std::filesystem::path part_;
+    std::ofstream out_;
+    bool committed_ = false;
+};
+
+} // namespace pedesis

@@ -1,0 +1,65 @@
+#pragma once
+// The contents of a run's TOML config, validated. Every key is documented in
+// docs/config.md; unknown keys are errors.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pedesis {
+
+struct SpeciesConfig {
+    std::string name;
+    std::optional<std::size_t> count; // may come from the initial-configuration file
+    double radius = 0.5;
+    double mass = 1.0;
+    // placement (defaults from [initial])
+    std::string positions;                     // random | square | hexagonal | sc | fcc | point
+    std::optional<std::vector<double>> region_lo, region_hi;
+    std::optional<std::vector<double>> point;  // positions = "point": every particle here (count 1)
+    // velocities (defaults from [initial])
+    std::string velocities;                    // zero | equal_speed | uniform | normal | maxwell_boltzmann | given
+    double speed = 1.0, sigma = 1.0, temperature = 1.0;
+    std::optional<std::vector<double>> velocity; // velocities = "given"
+};
+
+struct RunConfig {
+    std::string file; // where it came from, for messages
+    int dimension = 2;
+    std::string dynamics = "event";
+    std::uint64_t seed = 1;
+
+    std::vector<double> box_lengths;
+    std::vector<bool> periodic;
+
+    std::vector<SpeciesConfig> species;
+
+    std::optional<std::string> initial_file; // tutorial JSON with positions (and maybe velocities)
+    bool zero_momentum = true;
+    double min_distance = 0.0;
+
+    // [event]
+    double restitution = 1.0;
+    double wall_restitution = 1.0;
+    double tc = 0.0;
+    double skin = -1.0;
+    bool check_overlaps = false;
+
+    // [run] (at least one stop condition)
+    std::optional<double> stop_time;
+    std::optional<double> stop_collisions_per_particle;
+    std::optional<double> stop_energy_fraction;
+
+    // [output]
+    double log_interval = 1.0;
+    double snapshot_interval = 0.0; // 0: first and last frame only
+    std::vector<std::string> formats = {"xyz", "json"};
+    int histogram_bins = 50;
+    std::optional<double> histogram_start; // unset: histogram of the final state only
+    double checkpoint_interval = 0.0;      // 0: only at the end
+    bool progress = true;
+};
+
+RunConfig load_run_config(const std::string& path);
+
+} // namespace pedesis

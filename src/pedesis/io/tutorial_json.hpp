@@ -1,0 +1,51 @@
+#pragma once
+// Particle configurations in the JSON layout of the Active Brownian Particles
+// tutorial (ABPTutorial, pymd), so that its initial conditions and analysis
+// scripts work with pedesis unchanged:
+//   {"system": {"time": t, "box": {"Lx": .., "Ly": .. [, "Lz": ..]},
+//               "particles": [{"id": 0, "type": 0, "r": [..], "v": [..],
+//                              "radius": .., "mass": .. or "inf"}, ...]}}
+// Vectors have D components. Keys the tutorial writes that pedesis has no use
+// for (e.g. the force "f") are ignored on reading.
+#include "pedesis/core/box.hpp"
+#include "pedesis/core/particles.hpp"
+#include "pedesis/core/vec.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+namespace pedesis {
+
+// Particles in tag order; "type" is the species index. Doubles are written with
+// round-trip precision, so reading the document back gives identical values.
+template <int D>
+nlohmann::json to_tutorial_json(const ParticleStore<D>& p, const Box<D>& box, double time);
+
+// One particle as the file gives it; what the file leaves out stays empty and is
+// for the caller to fill from its own defaults.
+template <int D> struct FileParticle {
+    std::uint32_t id = 0;
+    int type = 0;
+    Vec<D> r{};
+    std::optional<Vec<D>> v;
+    std::optional<Vec<D>> n;
+    std::optional<double> radius, mass; // mass may be +infinity (fixed obstacle)
+};
+
+template <int D> struct ParticleFile {
+    std::optional<Vec<D>> box;              // box lengths, if the file has a "box"
+    std::vector<FileParticle<D>> particles; // in file order, ids as given
+};
+
+// Reads and validates a configuration: every value is checked (finite numbers,
+// vectors of D components, positive radius and mass, unique non-negative ids),
+// and any fault is an InputError naming the file and the particle and key, or
+// the line and column of a JSON syntax error. Checks against the species table
+// or the box are the caller's.
+template <int D> ParticleFile<D> read_tutorial_json(const std::filesystem::path& path);
+
+} // namespace pedesis

@@ -1,0 +1,214 @@
+#include "pedesis/setup/build_system.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/io/tutorial_json.hpp"
+#include "pedesis/setup/lattice.hpp"
+#include "pedesis/setup/random_placement.hpp"
+#include "pedesis/setup/velocities.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace pedesis {
+
+namespace {
+
+template <int D> Vec<D> to_vec(const std::vector<double>& v) {
+    Vec<D> r;
+    for (int a = 0; a < D; ++a) r[a] = v[static_cast<std::size_t>(a)];
+    return r;
+}
+
+std::string species_label(const RunConfig& c, std::size_t s) {
+    return c.file + ": species '" + c.species[s].name + "'";
+}
+
+// Region the centres of species s may occupy, and which of its axes are closed
+// (bounded by a wall or by the edge of a sub-region rather than tiling periodically).
+template <int D> struct CentreRegion {
+    Vec<D> lo, hi;
+    std::array<bool, D> closed{};
+};
+
+template <int D> CentreRegion<D> centre_region(const RunConfig& c, const Box<D>& box, std::size_t s) {
+    const SpeciesConfig& sp = c.species[s];
+    CentreRegion<D> reg;
+    for (int a = 0; a < D; ++a) {
+        const auto ua = static_cast<std::size_t>(a);
+        double lo = box.lo(a), hi = box.hi(a);
+        if (sp.region_lo) {
+            lo = std::max(lo, (*sp.region_lo)[ua]);
+            hi = std::min(hi, (*sp.region_hi)[ua]);
+        }
+        const bool full = lo <= box.lo(a) && hi >= box.hi(a);
+        reg.closed[a] = !(box.periodic(a) && full);
+        if (reg.closed[a]) {
+            lo += sp.radius;
+            hi -= sp.radius;
+        }
+        if (!(lo <= hi))
+            throw InputError(species_label(c, s) + ": region is narrower than one particle along axis " +
+                             std::to_string(a));
+        if (lo == hi) hi = std::nextafter(hi, hi + 1.0);
+        reg.lo[a] = lo;
+        reg.hi[a] = hi;
+    }
+    return reg;
+}
+
+template <int D>
+void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::size_t count,
+                   std::uint32_t first_tag, std::vector<Vec<D>>& pos, std::vector<double>& radii) {
+    const SpeciesConfig& sp = c.species[s];
+    if (sp.positions == "point") {
+        pos.push_back(to_vec<D>(*sp.point));
+        radii.push_back(sp.radius);
+        return;
+    }
+    const CentreRegion<D> reg = centre_region(c, box, s);
+    if (sp.positions == "random") {
+        PlacementRequest<D> req;
+        req.count = count;
+        req.radius = sp.radius;
+        req.lo = reg.lo;
+        req.hi = reg.hi;
+        req.min_distance = c.min_distance;
+        req.first_tag = first_tag;
+        req.what = species_label(c, s);
+        place_randomly(pos, radii, box, req, c.seed);
+        return;
+    }
+    LatticeKind kind;
+    try {
+        kind = parse_lattice(sp.positions, D);
+    } catch (const InputError& e) {
+        throw InputError(species_label(c, s) + ": positions: " + e.what() + ", random, point or file");
+    }
+    for (const auto& r : lattice_sites<D>(kind, reg.lo, reg.hi, reg.closed, count)) {
+        pos.push_back(r);
+        radii.push_back(sp.radius);
+    }
+}
+
+template <int D>
+void draw_species_velocities(const RunConfig& c, ParticleStore<D>& p, std::size_t s,
+                             const std::vector<std::size_t>& members, const std::vector<bool>& from_file) {
+    const SpeciesConfig& sp = c.species[s];
+    VelocitySpec spec;
+    try {
+        spec.kind = sp.velocities == "given" ? VelocityKind::given : parse_velocity_kind(sp.velocities);
+    } catch (const InputError& e) {
+        throw InputError(species_label(c, s) + ": velocities: " + e.what());
+    }
+    spec.speed = sp.speed;
+    spec.sigma = sp.sigma;
+    spec.temperature = sp.temperature;
+    std::vector<std::size_t> drawn;
+    for (std::size_t k = 0; k < members.size(); ++k) {
+        const std::size_t i = members[k];
+        if (from_file[i]) continue;
+        if (spec.kind == VelocityKind::given) {
+            p.velocity[i] = to_vec<D>(*sp.velocity);
+            continue;
+        }
+        // equal speeds with zero momentum: antithetic pairs keep every speed equal
+        if (spec.kind == VelocityKind::equal_speed && c.zero_momentum && k % 2 == 1 && !from_file[members[k - 1]])
+            p.velocity[i] = -p.velocity[members[k - 1]];
+        else
+            p.velocity[i] = draw_velocity<D>(spec, sp.mass, c.seed, p.tag[i]);
+        drawn.push_back(i);
+    }
+    if (std::isinf(sp.mass) || drawn.empty()) return;
+    const bool random_kind = spec.kind == VelocityKind::uniform || spec.kind == VelocityKind::normal ||
+                             spec.kind == VelocityKind::maxwell_boltzmann;
+    if (c.zero_momentum && random_kind && drawn.size() > 1) remove_drift(p, drawn);
+    if (spec.kind == VelocityKind::maxwell_boltzmann && drawn.size() > 1)
+        rescale_temperature(p, drawn, sp.temperature);
+}
+
+} // namespace
+
+template <int D> Box<D> build_box(const RunConfig& c) {
+    std::array<bool, D> periodic{};
+    for (int a = 0; a < D; ++a) periodic[a] = c.periodic[static_cast<std::size_t>(a)];
+    return Box<D>(to_vec<D>(c.box_lengths), periodic);
+}
+
+template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box) {
+    ParticleStore<D> p;
+    for (const auto& s : c.species) p.species_table.push_back(Species{s.name, s.radius, s.mass});
+    if (p.species_table.size() > 65535) throw InputError(c.file + ": too many species");
+
+    std::vector<Vec<D>> pos;
+    std::vector<double> radii;
+    std::vector<std::uint16_t> species;
+    std::vector<std::optional<Vec<D>>> file_velocity;
+
+    if (c.initial_file) {
+        const ParticleFile<D> f = read_tutorial_json<D>(*c.initial_file);
+        if (f.box) {
+            for (int a = 0; a < D; ++a)
+                if (std::abs((*f.box)[a] - box.length(a)) > 1e-9 * box.length(a))
+                    throw InputError(*c.initial_file + ": box does not match [box] of " + c.file);
+        }
+        // tags follow the file's ids in increasing order
+        std::vector<std::size_t> order(f.particles.size());
+        std::iota(order.begin(), order.end(), std::size_t{0});
+        std::sort(order.begin(), order.end(),
+                  [&](std::size_t a, std::size_t b) { return f.particles[a].id < f.particles[b].id; });
+        std::vector<std::size_t> per_type(c.species.size(), 0);
+        for (std::size_t k : order) {
+            const auto& fp = f.particles[k];
+            const std::string who = *c.initial_file + ": particle " + std::to_string(fp.id);
+            if (fp.type < 0 || static_cast<std::size_t>(fp.type) >= c.species.size())
+                throw InputError(who + ": type " + std::to_string(fp.type) + " has no [[species]] entry in " + c.file);
+            const auto s = static_cast<std::size_t>(fp.type);
+            if (fp.radius && std::abs(*fp.radius - c.species[s].radius) > 1e-12 * c.species[s].radius)
+                throw InputError(who + ": radius " + std::to_string(*fp.radius) + " differs from species '" +
+                                 c.species[s].name + "' radius " + std::to_string(c.species[s].radius));
+            pos.push_back(fp.r);
+            radii.push_back(c.species[s].radius);
+            species.push_back(static_cast<std::uint16_t>(s));
+            file_velocity.push_back(fp.v);
+            ++per_type[s];
+        }
+        for (std::size_t s = 0; s < c.species.size(); ++s)
+            if (c.species[s].count && *c.species[s].count != per_type[s])
+                throw InputError(species_label(c, s) + ": count " + std::to_string(*c.species[s].count) +
+                                 " but " + *c.initial_file + " holds " + std::to_string(per_type[s]));
+    } else {
+        for (std::size_t s = 0; s < c.species.size(); ++s) {
+            if (!c.species[s].count)
+                throw InputError(species_label(c, s) + ": count is required (or give [initial] file)");
+            const std::size_t n = *c.species[s].count;
+            place_species(c, box, s, n, static_cast<std::uint32_t>(pos.size()), pos, radii);
+            species.insert(species.end(), n, static_cast<std::uint16_t>(s));
+        }
+        file_velocity.assign(pos.size(), std::nullopt);
+    }
+    if (pos.empty()) throw InputError(c.file + ": no particles (N = 0)");
+
+    p.resize(pos.size());
+    std::vector<bool> from_file(pos.size(), false);
+    std::vector<std::vector<std::size_t>> members(c.species.size());
+    for (std::size_t i = 0; i < pos.size(); ++i) {
+        p.position[i] = pos[i];
+        p.tag[i] = static_cast<std::uint32_t>(i);
+        p.species[i] = species[i];
+        if (file_velocity[i]) {
+            p.velocity[i] = *file_velocity[i];
+            from_file[i] = true;
+        }
+        members[species[i]].push_back(i);
+    }
+    for (std::size_t s = 0; s < c.species.size(); ++s) draw_species_velocities(c, p, s, members[s], from_file);
+    return p;
+}
+
+template Box<2> build_box<2>(const RunConfig&);
+template Box<3> build_box<3>(const RunConfig&);
+template ParticleStore<2> build_particles<2>(const RunConfig&, const Box<2>&);
+template ParticleStore<3> build_particles<3>(const RunConfig&, const Box<3>&);
+
+} // namespace pedesis
