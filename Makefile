@@ -18,7 +18,7 @@ build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
-	./$(BUILD)/pedesis run examples/demo_relaxation_2d.toml --out runs/demo
+	./$(BUILD)/pedesis run examples/course_1_relaxation.toml --out runs/demo
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE validation

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
 
@@ -77,13 +78,46 @@ std::pair<std::size_t, std::size_t> line_and_column(const std::string& text, std
     return {line, column};
 }
 
-// "[json.exception.parse_error.101] parse error at line 4, column 9: syntax error ..."
-// keeps only "syntax error ...": the position is reported in the file:line:column form.
-std::string parse_error_reason(const std::string& what) {
-    const std::size_t head = what.find("parse error");
-    if (head == std::string::npos) return what;
-    const std::size_t colon = what.find(": ", head);
-    return colon == std::string::npos ? what : what.substr(colon + 2);
+// nlohmann's messages start "[json.exception.parse_error.101] parse error at line
+// 4, column 9: "; the position is reported in the file:line:column form instead.
+std::string reason_of(const std::string& what) {
+    std::size_t start = 0;
+    if (what.starts_with("[json.exception.")) {
+        const std::size_t close = what.find("] ");
+        if (close != std::string::npos) start = close + 2;
+    }
+    if (what.compare(start, 11, "parse error") == 0) {
+        const std::size_t colon = what.find(": ", start);
+        if (colon != std::string::npos) start = colon + 2;
+    }
+    return what.substr(start);
+}
+
+std::string at_position(const fs::path& path, const std::string& text, std::size_t byte) {
+    if (byte == 0) return path.string();
+    const auto [line, column] = line_and_column(text, byte);
+    return path.string() + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+// A literal such as 1e999 is valid JSON syntax but overflows a double; nlohmann
+// reports only the literal ("number overflow parsing '1e999'"), so locate it.
+std::size_t byte_of_literal(const std::string& text, const std::string& what) {
+    const std::size_t open = what.find(" parsing '");
+    if (open == std::string::npos) return 0;
+    const std::size_t begin = open + 10, close = what.find('\'', begin);
+    if (close == std::string::npos) return 0;
+    const std::size_t at = text.find(what.substr(begin, close - begin));
+    return at == std::string::npos ? 0 : at + 1;
+}
+
+// Python's json module writes float("inf") and NaN as bare Infinity and NaN,
+// which are not JSON; say so, since the parser's own message only shows "I".
+std::string python_literal_hint(const std::string& text, std::size_t byte) {
+    if (byte == 0 || byte > text.size()) return {};
+    const std::string_view rest = std::string_view(text).substr(byte - 1);
+    if (!rest.starts_with("Infinity") && !rest.starts_with("NaN")) return {};
+    return " (JSON has no Infinity or NaN; write the mass of a fixed obstacle as the string "
+           "\"inf\")";
 }
 
 json parse_document(const fs::path& path) {
@@ -91,21 +125,20 @@ json parse_document(const fs::path& path) {
     try {
         return json::parse(text);
     } catch (const json::parse_error& e) {
-        std::string where = path.string();
-        if (e.byte != 0) {
-            const auto [line, column] = line_and_column(text, e.byte);
-            where += ":" + std::to_string(line) + ":" + std::to_string(column);
-        }
-        throw InputError(where + ": " + parse_error_reason(e.what()));
+        throw InputError(at_position(path, text, e.byte) + ": " + reason_of(e.what()) +
+                         python_literal_hint(text, e.byte));
+    } catch (const json::exception& e) {
+        throw InputError(at_position(path, text, byte_of_literal(text, e.what())) + ": " +
+                         reason_of(e.what()));
     }
 }
 
 double finite_number(const json& j, const Where& w, const std::string& key) {
-    if (!j.is_number()) w.fail(key, "must be a finite number, got " + shown(j));
-    const double x = j.get<double>();
-    // JSON has no NaN or infinity, but a literal like 1e999 parses to infinity.
-    if (!std::isfinite(x)) w.fail(key, "must be a finite number, got " + shown(j));
-    return x;
+    // Strings such as "nan" or "inf" are the usual way NaN and infinity sneak into
+    // JSON; they are not numbers here (mass "inf" is handled by its own reader).
+    if (!j.is_number() || !std::isfinite(j.get<double>()))
+        w.fail(key, "must be a finite number, got " + shown(j));
+    return j.get<double>();
 }
 
 double positive_number(const json& j, const Where& w, const std::string& key) {

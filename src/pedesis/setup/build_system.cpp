@@ -139,6 +139,12 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
     ParticleStore<D> p;
     for (const auto& s : c.species) p.species_table.push_back(Species{s.name, s.radius, s.mass});
     if (p.species_table.size() > 65535) throw InputError(c.file + ": too many species");
+    for (const auto& s : c.species)
+        for (int a = 0; a < D; ++a)
+            if (box.length(a) < 2.0 * s.radius)
+                throw InputError(c.file + ": box length " + std::to_string(box.length(a)) + " along axis " +
+                                 std::to_string(a) + " is smaller than one particle of species '" + s.name +
+                                 "' (diameter " + std::to_string(2.0 * s.radius) + ")");
 
     std::vector<Vec<D>> pos;
     std::vector<double> radii;

@@ -1,0 +1,61 @@
+#pragma once
+// Runs the real pedesis binary in a scratch directory and captures what a user sees.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace pedesis::test {
+
+struct CliResult {
+    int exit_code = -1;
+    std::string output; // stdout and stderr together
+};
+
+inline CliResult run_pedesis(const std::string& args, const std::filesystem::path& cwd) {
+    const std::string cmd = "cd '" + cwd.string() + "' && '" + PEDESIS_BINARY + "' " + args + " 2>&1";
+    CliResult r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf;
+    while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
+    const int status = pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class ScratchDir : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir = std::filesystem::temp_directory_path() /
+              (std::string("pedesis_cli_") + info->test_suite_name() + "_" + info->name());
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir);
+    }
+    void TearDown() override {
+        if (!HasFailure()) std::filesystem::remove_all(dir);
+    }
+    void write(const std::string& name, const std::string& text) {
+        std::ofstream(dir / name) << text;
+    }
+    std::string read(const std::string& name) {
+        std::ifstream in(dir / name);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }
+    std::filesystem::path dir;
+};
+
+// A small valid config; tests replace pieces of it to make it invalid.
+inline std::string small_config(const std::string& extra_species = "", const std::string& box = "length = 20.0",
+                                 const std::string& run = "time = 2.0") {
+    return "dimension = 2\nseed = 3\n[box]\n" + box + "\nboundary = \"wall\"\n" +
+           "[[species]]\nname = \"A\"\ncount = 50\nradius = 0.5\nmass = 1.0\n" + extra_species +
+           "[run]\n" + run + "\n[output]\nlog_interval = 0.5\nprogress = false\n";
+}
+
+} // namespace pedesis::test
