@@ -57,13 +57,20 @@ template <int D> class Box {
     Vec<D> wrap(Vec<D>& r) const {
         Vec<D> shift{};
         for (int a = 0; a < D; ++a) {
-            if (!periodic_[a]) continue;
+            if (!periodic_[a] || (r[a] >= -half_[a] && r[a] < half_[a])) continue;
             const double k = std::floor((r[a] + half_[a]) / L_[a]);
-            if (k != 0.0) {
-                r[a] -= k * L_[a];
-                shift[a] = k;
+            r[a] -= k * L_[a];
+            shift[a] = k;
+            // rounding can leave r a hair outside; both ends are the same point of the torus
+            if (r[a] >= half_[a]) {
+                r[a] -= L_[a];
+                shift[a] += 1.0;
             }
-            if (r[a] >= half_[a]) r[a] -= L_[a]; // rounding can leave r exactly at +L/2
+            if (r[a] < -half_[a]) {
+                r[a] += L_[a];
+                shift[a] -= 1.0;
+            }
+            if (r[a] >= half_[a]) r[a] = -half_[a];
         }
         return shift;
     }
