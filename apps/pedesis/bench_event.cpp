@@ -97,7 +97,7 @@ void add_bench_event(CLI::App& bench) {
     cmd->add_option("--eta", o->eta, "Packing fraction");
     cmd->add_option("--time", o->time, "Simulated time measured (after the warm-up)");
     cmd->add_option("--warmup", o->warmup, "Simulated time run before measuring (melts the lattice)");
-    cmd->add_option("--skin", o->skin, "Neighbour-list skin (default 0.5 sigma)");
+    cmd->add_option("--skin", o->skin, "Neighbour-list skin (default: chosen from the density, as in runs)");
     cmd->add_option("--seed", o->seed, "Random seed");
     cmd->callback([o] {
         if (o->dim == 2)

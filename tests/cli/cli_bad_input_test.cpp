@@ -96,7 +96,12 @@ TEST_F(BadInput, CorruptCheckpoint) {
     EXPECT_NE(r.output.find("junk.bin"), std::string::npos) << r.output;
 }
 
+TEST_F(BadInput, SpeciesNamesMustFitColumns) {
+    expect_rejected(small_config("[[species]]\nname = \"big disk\"\ncount = 1\n"), {"species[1].name", "without spaces"});
+}
+
 TEST_F(BadInput, ImpossibleStopCondition) {
+    expect_rejected(small_config("", "length = 20.0", "energy_fraction = 0.5"), {"run.energy_fraction", "never be reached"});
     expect_rejected(small_config("", "length = 20.0", "energy_fraction = 1.5"), {"run.energy_fraction"});
     expect_rejected(small_config("", "length = 20.0", "time = 1.0\ncolour = 2"), {"unknown key 'run.colour'"});
     expect_rejected(small_config("", "length = 20.0", ""), {"[run] needs at least one of"});

@@ -35,6 +35,15 @@ TEST_F(CliRun, RestartContinuesBitForBit) {
     const std::string last_cont = read("cont/snapshots/frame_000002.json");
     ASSERT_FALSE(last_full.empty());
     EXPECT_EQ(last_full, last_cont);
+    EXPECT_EQ(read("full/speed_histogram.csv"), read("cont/speed_histogram.csv"));
+}
+
+TEST_F(CliRun, FrozenSystemStopsInsteadOfLooping) {
+    write("frozen.toml", "dimension = 2\n[box]\nlength = 10.0\n[[species]]\ncount = 4\nvelocities = \"zero\"\n"
+                         "[run]\ncollisions_per_particle = 5\n[output]\nprogress = false\n");
+    const CliResult r = run_pedesis("run frozen.toml --out out", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("no more events"), std::string::npos) << r.output;
 }
 
 TEST_F(CliRun, OutputsParse) {

@@ -280,11 +280,11 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
     while (true) {
         const std::uint32_t i = queue_.top();
         const double te = queue_.top_time();
+        if (te == never) return StopReason::no_events; // nothing moves: time is meaningless
         if (te > limits.time) {
             if (std::isfinite(limits.time)) now_ = std::max(now_, limits.time);
             return StopReason::time;
         }
-        if (te == never) return StopReason::no_events;
         // Inelastic collapse shows as unbounded events at one instant.
         if (te - now_ <= 1e-13 * (1.0 + std::abs(te))) {
             if (++stalled_events_ > 1000 + 200 * static_cast<std::uint64_t>(p_.size())) {
@@ -394,7 +394,7 @@ template <int D> std::size_t EventEngine<D>::memory_bytes() const {
 }
 
 namespace {
-constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "PEDESECK"
+constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" in memory order
 constexpr std::uint32_t checkpoint_version = 1;
 } // namespace
 

@@ -53,6 +53,8 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
     for (auto& t : list) {
         SpeciesConfig s = defaults;
         s.name = t.string("name").value_or(std::string(1, static_cast<char>('A' + c.species.size() % 26)));
+        if (s.name.empty() || s.name.find_first_of(" \t\n\",'") != std::string::npos)
+            throw InputError(t.where("name") + ": a species name must be non-empty, without spaces, commas or quotes");
         if (!names.insert(s.name).second) throw InputError(t.where("name") + ": duplicate species name '" + s.name + "'");
         if (auto n = t.integer("count")) {
             if (*n <= 0) throw InputError(t.where("count") + ": must be a positive integer (N = 0 has nothing to simulate)");
@@ -155,6 +157,12 @@ RunConfig load_run_config(const std::string& path) {
     if (!c.stop_time && !c.stop_collisions_per_particle && !c.stop_energy_fraction)
         throw InputError(path + ": [run] needs at least one of time, collisions_per_particle, energy_fraction");
     run->finish();
+
+    if (c.stop_energy_fraction && !c.stop_time && !c.stop_collisions_per_particle && c.restitution == 1.0 &&
+        c.wall_restitution == 1.0)
+        throw InputError(run->where("energy_fraction") +
+                         ": can never be reached with elastic collisions (event.restitution = 1 and "
+                         "event.wall_restitution = 1); add run.time or run.collisions_per_particle");
 
     if (auto out = root.table("output")) {
         c.log_interval = out->number("log_interval", c.log_interval);

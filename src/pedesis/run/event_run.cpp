@@ -174,13 +174,20 @@ template <int D> class EventRun {
         } catch (const RunError& e) {
             // keep what is good: frames so far, the log, and the last checkpoint
             close_streams();
-            throw RunError(std::string(e.what()) + " (outputs up to the last good frame are in " +
+            throw RunError(std::string(e.what()) + " (the log, the frames and the last checkpoint written so far are in " +
                            o_.out_dir.string() + ")");
         }
         finish(reason);
     }
 
   private:
+    static const char* pressure_method(const Box<D>& box) {
+        bool wall = false, periodic = false;
+        for (int a = 0; a < D; ++a) (box.periodic(a) ? periodic : wall) = true;
+        if (wall && periodic) return "walls on walled axes, collision virial on periodic axes";
+        return wall ? "momentum delivered to the walls" : "collision virial";
+    }
+
     static double next_multiple(double t, double step) {
         return (std::floor(t / step + 1e-9) + 1.0) * step;
     }
@@ -197,6 +204,8 @@ template <int D> class EventRun {
         std::error_code ec;
         std::filesystem::create_directories(o_.out_dir / "snapshots", ec);
         if (ec) throw InputError(o_.out_dir.string() + ": cannot create output directory: " + ec.message());
+        // results of an earlier run in this directory must not pass for this run's
+        for (const char* stale : {"summary.json", "speed_histogram.csv"}) std::filesystem::remove(o_.out_dir / stale, ec);
         std::ifstream cfg(o_.config_path);
         std::stringstream text;
         text << cfg.rdbuf();
@@ -275,7 +284,10 @@ template <int D> class EventRun {
     void finish(StopReason reason) {
         const auto& e = *engine_;
         frame();
-        if (!c_.histogram_start) state_.histogram.add(e.lazy_particles());
+        save_checkpoint(o_.out_dir / "checkpoint.bin", e, state_);
+        // the final-state sample is not in the checkpoint, so a continued run does not count it twice
+        SpeedHistogram histogram = state_.histogram;
+        if (!c_.histogram_start) histogram.add(e.lazy_particles());
         std::vector<std::string> names;
         std::vector<double> masses;
         for (const auto& s : c_.species) {
@@ -283,8 +295,7 @@ template <int D> class EventRun {
             masses.push_back(s.mass);
         }
         write_file_atomically(o_.out_dir / "speed_histogram.csv",
-                              [&](std::ostream& out) { state_.histogram.write_csv(out, D, names, masses); });
-        save_checkpoint(o_.out_dir / "checkpoint.bin", e, state_);
+                              [&](std::ostream& out) { histogram.write_csv(out, D, names, masses); });
         close_streams();
         write_summary(reason);
     }
@@ -324,7 +335,10 @@ template <int D> class EventRun {
         j["pressure_ideal_gas"] = P_ideal;
         j["compressibility"] = P_ideal > 0 ? P / P_ideal : 0.0;
         j["compressibility_equation_of_state"] = Z_eos;
-        j["mean_free_time"] = C ? static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C)) : 0.0;
+        if (C)
+            j["mean_free_time"] = static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C));
+        else
+            j["mean_free_time"] = nullptr; // infinite: no collision yet
         write_file_atomically(o_.out_dir / "summary.json", [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 
         console_ << fmt::format("pedesis: stopped by {} at t = {:.6g} after {} collisions ({:.3g} per particle)\n", why,
@@ -335,13 +349,13 @@ template <int D> class EventRun {
             for (std::size_t s = 0; s < c_.species.size(); ++s)
                 console_ << fmt::format("  temperature of {:<4s} {:.6g}\n", c_.species[s].name, k.temperature(D, s));
         console_ << fmt::format("  pressure           {:.6g} ({})\n", P,
-                                e.box().any_wall() ? "momentum delivered to the walls" : "collision virial");
+                                pressure_method(e.box()));
         console_ << fmt::format("  ideal gas N T / V  {:.6g}  ->  Z = P V / (N T) = {:.4f}\n", P_ideal,
                                 P_ideal > 0 ? P / P_ideal : 0.0);
         console_ << fmt::format("  {} at eta = {:.4f}: Z = {:.4f}{}\n",
                                 D == 2 ? "hard-disk EOS (Henderson)" : "hard-sphere EOS (Carnahan-Starling)", eta,
                                 Z_eos, e.box().any_wall() ? " (walls shift this by O(sigma/L))" : "");
-        console_ << fmt::format("  mean free time     {:.6g}\n", j["mean_free_time"].template get<double>());
+        if (C) console_ << fmt::format("  mean free time     {:.6g}\n", j["mean_free_time"].template get<double>());
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 

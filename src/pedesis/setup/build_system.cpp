@@ -83,7 +83,7 @@ void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::si
     try {
         kind = parse_lattice(sp.positions, D);
     } catch (const InputError& e) {
-        throw InputError(species_label(c, s) + ": positions: " + e.what() + ", random, point or file");
+        throw InputError(species_label(c, s) + ": positions: " + e.what() + ", random or point (or [initial] file)");
     }
     for (const auto& r : lattice_sites<D>(kind, reg.lo, reg.hi, reg.closed, count)) {
         pos.push_back(r);
@@ -173,6 +173,10 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
             if (fp.radius && std::abs(*fp.radius - c.species[s].radius) > 1e-12 * c.species[s].radius)
                 throw InputError(who + ": radius " + std::to_string(*fp.radius) + " differs from species '" +
                                  c.species[s].name + "' radius " + std::to_string(c.species[s].radius));
+            if (fp.mass && !(*fp.mass == c.species[s].mass) &&
+                !(std::abs(*fp.mass - c.species[s].mass) <= 1e-12 * c.species[s].mass))
+                throw InputError(who + ": mass " + std::to_string(*fp.mass) + " differs from species '" +
+                                 c.species[s].name + "' mass " + std::to_string(c.species[s].mass));
             pos.push_back(fp.r);
             radii.push_back(c.species[s].radius);
             species.push_back(static_cast<std::uint16_t>(s));

@@ -14,7 +14,7 @@ VelocityKind parse_velocity_kind(const std::string& name) {
     if (name == "normal") return VelocityKind::normal;
     if (name == "maxwell_boltzmann") return VelocityKind::maxwell_boltzmann;
     throw InputError("unknown velocity distribution '" + name +
-                     "' (use zero, equal_speed, uniform, normal or maxwell_boltzmann)");
+                     "' (use zero, equal_speed, uniform, normal, maxwell_boltzmann, or give velocity = [..])");
 }
 
 template <int D>
