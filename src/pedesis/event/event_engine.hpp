@@ -99,6 +99,7 @@ template <int D> class EventEngine {
     void process_pair(std::uint32_t i, std::uint32_t j);
     void process_wall(std::uint32_t i, std::int32_t code);
     void rebuild_list(std::uint32_t i);
+    void resum_kinetic_energy();
     void check_particle_overlap(std::uint32_t i, double rel_tol) const;
     double contact(std::uint32_t i, std::uint32_t j) const {
         return radius_[p_.species[i]] + radius_[p_.species[j]];
@@ -111,6 +112,7 @@ template <int D> class EventEngine {
     double skin_ = 0.0;
     double shell_ = 0.0; // skin / 2: how far a particle may stray from its centre
     double kinetic_ = 0.0;
+    double kinetic_exact_ = 0.0; // kinetic_ when last summed from the velocities
 
     std::vector<double> radius_;   // per species
     std::vector<double> inv_mass_; // per species

@@ -81,14 +81,13 @@ std::vector<Vec<D>> lattice_sites(LatticeKind kind, const Vec<D>& lo, const Vec<
             umax[a] = std::max(umax[a], s[a]);
         }
     for (int a = 0; a < D; ++a) umax[a] += static_cast<double>(count[a] - 1);
-    std::vector<Vec<D>> out;
-    out.reserve(n);
+    // All sites in row-major order, then n of them spread evenly: the vacancies of an
+    // incomplete lattice are scattered instead of leaving empty planes at one end.
+    std::vector<Vec<D>> all;
     std::array<long, D> k{};
-    while (out.size() < n) {
+    while (true) {
         for (const auto& s : b.sites) {
-            if (out.size() == n) break;
             Vec<D> r;
-            // basis offsets of 0.25/0.75 centre the cell contents: same spacing at the edges
             for (int a = 0; a < D; ++a) {
                 const double u = static_cast<double>(k[a]) + s[a];
                 if (!closed[a])
@@ -98,12 +97,16 @@ std::vector<Vec<D>> lattice_sites(LatticeKind kind, const Vec<D>& lo, const Vec<
                 else
                     r[a] = lo[a] + 0.5 * L[a];
             }
-            out.push_back(r);
+            all.push_back(r);
         }
         int a = 0;
         while (a < D && ++k[a] == count[a]) k[a++] = 0;
         if (a == D) break;
     }
+    std::vector<Vec<D>> out;
+    out.reserve(n);
+    if (all.size() >= n)
+        for (std::size_t m = 0; m < n; ++m) out.push_back(all[m * all.size() / n]);
     if (out.size() < n) throw InputError("lattice: region too small for the requested count");
     return out;
 }

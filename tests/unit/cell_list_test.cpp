@@ -1,0 +1,167 @@
+// CellList: for random configurations the pairs found through for_each_near within the
+// cutoff are exactly the brute-force pairs, in periodic and walled boxes of several
+// shapes, including axes with only 1 or 2 cells; and no particle is visited twice.
+#include "pedesis/core/rng.hpp"
+#include "pedesis/spatial/cell_list.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace pedesis;
+
+namespace {
+
+template <int D> std::string describe(const Box<D>& box, double cutoff) {
+    std::string s = "L = (";
+    for (int a = 0; a < D; ++a)
+        s += std::to_string(box.length(a)) + (box.periodic(a) ? "p" : "w") + (a + 1 < D ? ", " : ")");
+    return s + " cutoff " + std::to_string(cutoff);
+}
+
+template <int D>
+std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, std::uint64_t seed) {
+    std::vector<Vec<D>> pos(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        CounterRng rng(seed, RngStream::placement, static_cast<std::uint32_t>(i));
+        for (int a = 0; a < D; ++a) pos[i][a] = rng.uniform(box.lo(a), box.hi(a));
+        box.wrap(pos[i]);
+    }
+    // a few particles exactly on the boundaries (walls, or -L/2 on periodic axes)
+    for (std::size_t i = 0; i < std::min<std::size_t>(n, 4); ++i)
+        for (int a = 0; a < D; ++a) {
+            if (i % 2 == 0)
+                pos[i][a] = box.lo(a);
+            else if (!box.periodic(a))
+                pos[i][a] = box.hi(a);
+        }
+    return pos;
+}
+
+template <int D>
+std::set<std::pair<std::uint32_t, std::uint32_t>> brute_pairs(const Box<D>& box,
+                                                              const std::vector<Vec<D>>& pos,
+                                                              double cutoff) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> s;
+    for (std::uint32_t i = 0; i < pos.size(); ++i)
+        for (std::uint32_t j = i + 1; j < pos.size(); ++j)
+            if (norm2(box.minimum_image(pos[i] - pos[j])) < cutoff * cutoff) s.insert({i, j});
+    return s;
+}
+
+template <int D>
+std::set<std::pair<std::uint32_t, std::uint32_t>> cell_pairs(const Box<D>& box, const CellList<D>& cells,
+                                                             const std::vector<Vec<D>>& pos, double cutoff,
+                                                             const std::vector<bool>& present) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> s;
+    for (std::uint32_t i = 0; i < pos.size(); ++i) {
+        if (!present[i]) continue;
+        std::vector<int> visits(pos.size(), 0);
+        cells.for_each_near(pos[i], [&](std::uint32_t j) {
+            ++visits[j];
+            if (j == i) return;
+            if (norm2(box.minimum_image(pos[i] - pos[j])) < cutoff * cutoff)
+                s.insert({std::min(i, j), std::max(i, j)});
+        });
+        for (std::uint32_t j = 0; j < pos.size(); ++j) {
+            EXPECT_LE(visits[j], 1) << "particle " << j << " visited twice from " << i;
+            if (!present[j]) { EXPECT_EQ(visits[j], 0) << "removed particle " << j << " still listed"; }
+        }
+        EXPECT_EQ(visits[i], 1) << "particle " << i << " not found in its own cell";
+    }
+    return s;
+}
+
+template <int D> void check_box(const Box<D>& box, double cutoff, std::size_t n, std::uint64_t seed) {
+    SCOPED_TRACE(describe(box, cutoff));
+    auto pos = random_positions(box, n, seed);
+    CellList<D> cells(box, cutoff);
+    for (int a = 0; a < D; ++a) EXPECT_GE(cells.cell_width(a), std::min(cutoff, box.length(a)) * (1 - 1e-12));
+    cells.build(pos);
+    std::vector<bool> present(n, true);
+    const auto expected = brute_pairs(box, pos, cutoff);
+    EXPECT_EQ(cell_pairs(box, cells, pos, cutoff, present), expected);
+
+    // incremental: move a third of the particles (remove + insert), remove a few for good
+    CounterRng rng(seed + 1000, RngStream::placement, 0);
+    for (std::uint32_t i = 0; i < n; i += 3) {
+        cells.remove(i);
+        for (int a = 0; a < D; ++a) pos[i][a] = rng.uniform(box.lo(a), box.hi(a));
+        box.wrap(pos[i]);
+        cells.insert(i, pos[i]);
+    }
+    for (std::uint32_t i = 1; i < n; i += 7) {
+        cells.remove(i);
+        present[i] = false;
+    }
+    auto after = brute_pairs(box, pos, cutoff);
+    std::erase_if(after, [&](const auto& pr) { return !present[pr.first] || !present[pr.second]; });
+    EXPECT_EQ(cell_pairs(box, cells, pos, cutoff, present), after);
+}
+
+} // namespace
+
+TEST(CellList, CellCountsAlongAxes) {
+    Box<3> box(Vec<3>{{1.5, 3.5, 10.0}}, {true, true, false});
+    CellList<3> cells(box, 1.5);
+    EXPECT_EQ(cells.cells_along(0), 1);
+    EXPECT_EQ(cells.cells_along(1), 2);
+    EXPECT_EQ(cells.cells_along(2), 6);
+    EXPECT_EQ(cells.cell_count(), 12u);
+    // a box smaller than the cell still has one cell
+    CellList<3> tiny(box, 100.0);
+    EXPECT_EQ(tiny.cell_count(), 1u);
+}
+
+TEST(CellList, NeighbourCellsAreDistinct) {
+    for (bool periodic : {true, false}) {
+        for (double Lx : {1.0, 2.5, 3.5, 7.0}) {
+            Box<2> box(Vec<2>{{Lx, 5.0}}, {periodic, periodic});
+            CellList<2> cells(box, 1.0);
+            for (std::int32_t c = 0; c < static_cast<std::int32_t>(cells.cell_count()); ++c) {
+                std::vector<std::int32_t> seen;
+                cells.for_each_neighbor_cell(c, [&](std::int32_t x) { seen.push_back(x); });
+                std::sort(seen.begin(), seen.end());
+                EXPECT_EQ(std::adjacent_find(seen.begin(), seen.end()), seen.end())
+                    << "cell " << c << " Lx " << Lx << " periodic " << periodic;
+                EXPECT_TRUE(std::binary_search(seen.begin(), seen.end(), c));
+                for (auto x : seen) {
+                    EXPECT_GE(x, 0);
+                    EXPECT_LT(x, static_cast<std::int32_t>(cells.cell_count()));
+                }
+            }
+        }
+    }
+}
+
+TEST(CellList, MatchesBruteForce2D) {
+    std::uint64_t seed = 1;
+    // cutoff 1: axes with 1, 2, 3 and many cells; square and elongated boxes
+    for (bool periodic : {true, false}) {
+        for (const auto& L : {Vec<2>{{1.5, 1.5}}, Vec<2>{{2.5, 2.5}}, Vec<2>{{1.2, 9.0}}, Vec<2>{{2.9, 7.3}},
+                              Vec<2>{{3.0, 3.0}}, Vec<2>{{10.0, 10.0}}, Vec<2>{{17.3, 4.1}}}) {
+            check_box(Box<2>(L, {periodic, periodic}), 1.0, 120, seed++);
+        }
+    }
+    // mixed: one periodic axis, one walled
+    check_box(Box<2>(Vec<2>{{2.2, 8.0}}, {true, false}), 1.0, 150, seed++);
+    check_box(Box<2>(Vec<2>{{8.0, 1.7}}, {false, true}), 1.0, 150, seed++);
+    // cutoff not dividing the box evenly, dense
+    check_box(Box<2>(Vec<2>{{11.0, 6.0}}, {true, true}), 1.37, 400, seed++);
+}
+
+TEST(CellList, MatchesBruteForce3D) {
+    std::uint64_t seed = 100;
+    for (bool periodic : {true, false}) {
+        for (const auto& L : {Vec<3>{{1.5, 1.5, 1.5}}, Vec<3>{{2.5, 2.5, 2.5}}, Vec<3>{{1.2, 2.2, 6.0}},
+                              Vec<3>{{3.0, 4.5, 5.0}}, Vec<3>{{6.0, 6.0, 6.0}}}) {
+            check_box(Box<3>(L, {periodic, periodic, periodic}), 1.0, 150, seed++);
+        }
+    }
+    check_box(Box<3>(Vec<3>{{2.4, 5.0, 1.1}}, {true, false, true}), 1.0, 150, seed++);
+    check_box(Box<3>(Vec<3>{{5.0, 2.1, 3.3}}, {false, true, false}), 1.0, 150, seed++);
+}
