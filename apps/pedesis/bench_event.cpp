@@ -46,7 +46,8 @@ template <int D> void run_bench(const BenchEventOptions& o) {
     const auto kind = D == 2 ? LatticeKind::hexagonal : LatticeKind::fcc;
     std::array<bool, D> open{};
     p.resize(o.n);
-    p.position = lattice_sites<D>(kind, Vec<D>::filled(-0.5 * L), Vec<D>::filled(0.5 * L), open, o.n);
+    p.position =
+        lattice_sites<D>(kind, Vec<D>::filled(-0.5 * L), Vec<D>::filled(0.5 * L), open, o.n);
     VelocitySpec vs;
     vs.kind = VelocityKind::maxwell_boltzmann;
     vs.temperature = 1.0;
@@ -63,8 +64,8 @@ template <int D> void run_bench(const BenchEventOptions& o) {
     EventParams params;
     params.skin = o.skin;
     auto engine = std::make_unique<EventEngine<D>>(std::move(p), box, params);
-    fmt::print("bench event: dim {} N {} eta {} L {:.4f} skin {:.3f} time {} (after {} warm-up)\n", D,
-               o.n, o.eta, L, engine->skin(), o.time, o.warmup);
+    fmt::print("bench event: dim {} N {} eta {} L {:.4f} skin {:.3f} time {} (after {} warm-up)\n",
+               D, o.n, o.eta, L, engine->skin(), o.time, o.warmup);
     StopLimits warm;
     warm.time = o.warmup;
     engine->run(warm);
@@ -96,8 +97,10 @@ void add_bench_event(CLI::App& bench) {
     cmd->add_option("--n", o->n, "Number of particles");
     cmd->add_option("--eta", o->eta, "Packing fraction");
     cmd->add_option("--time", o->time, "Simulated time measured (after the warm-up)");
-    cmd->add_option("--warmup", o->warmup, "Simulated time run before measuring (melts the lattice)");
-    cmd->add_option("--skin", o->skin, "Neighbour-list skin (default: chosen from the density, as in runs)");
+    cmd->add_option("--warmup", o->warmup,
+                    "Simulated time run before measuring (melts the lattice)");
+    cmd->add_option("--skin", o->skin,
+                    "Neighbour-list skin (default: chosen from the density, as in runs)");
     cmd->add_option("--seed", o->seed, "Random seed");
     cmd->callback([o] {
         if (o->dim == 2)

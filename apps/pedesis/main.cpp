@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
     CLI::App app{"pedesis: particle dynamics of gases and active matter"};
     app.require_subcommand(1);
     pedesis::cli::add_run_command(app);
-    auto* bench = app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");
+    auto* bench =
+        app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");
     bench->require_subcommand(1);
     pedesis::cli::add_bench_event(*bench);
     try {

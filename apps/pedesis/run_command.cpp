@@ -19,16 +19,19 @@ struct RunArgs {
 
 void add_run_command(CLI::App& app) {
     auto a = std::make_shared<RunArgs>();
-    auto* cmd = app.add_subcommand("run", "Run a simulation described by a TOML config (docs/config.md)");
+    auto* cmd =
+        app.add_subcommand("run", "Run a simulation described by a TOML config (docs/config.md)");
     cmd->add_option("config", a->config, "Config file")->required();
     cmd->add_option("--out", a->out, "Run directory (default: runs/<config name>)");
-    cmd->add_option("--restart", a->restart, "Continue exactly from a checkpoint.bin of an earlier run");
+    cmd->add_option("--restart", a->restart,
+                    "Continue exactly from a checkpoint.bin of an earlier run");
     cmd->callback([a] {
         const RunConfig config = load_run_config(a->config);
         RunOptions o;
         o.config_path = a->config;
-        o.out_dir = a->out.empty() ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
-                                   : std::filesystem::path(a->out);
+        o.out_dir = a->out.empty()
+                        ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
+                        : std::filesystem::path(a->out);
         if (!a->restart.empty()) o.restart = a->restart;
         run_event_simulation(config, o, std::cout);
     });

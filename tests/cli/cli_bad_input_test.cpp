@@ -13,7 +13,9 @@ class BadInput : public ScratchDir {
         write("bad.toml", config);
         const CliResult r = run_pedesis("run bad.toml --out out", dir);
         EXPECT_EQ(r.exit_code, 2) << r.output;
-        for (const auto& f : fragments) EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+        for (const auto& f : fragments)
+            EXPECT_NE(r.output.find(f), std::string::npos)
+                << "missing '" << f << "' in: " << r.output;
         EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
         EXPECT_FALSE(std::filesystem::exists(dir / "out" / "log.csv"));
         EXPECT_FALSE(std::filesystem::exists(dir / "out" / "trajectory.xyz"));
@@ -29,11 +31,12 @@ TEST_F(BadInput, ValidConfigRuns) {
 }
 
 TEST_F(BadInput, OverlappingParticlesNameThePair) {
-    expect_rejected("dimension = 2\n[box]\nlength = 20.0\nboundary = \"wall\"\n"
-                    "[[species]]\nname = \"P\"\nradius = 1.0\nposition = [0.0, 0.0]\nvelocity = [0.0, 0.0]\n"
-                    "[[species]]\nname = \"Q\"\nradius = 1.0\nposition = [1.5, 0.0]\nvelocity = [0.0, 0.0]\n"
-                    "[run]\ntime = 1.0\n",
-                    {"particle 0", "particle 1", "overlap 0.5"});
+    expect_rejected(
+        "dimension = 2\n[box]\nlength = 20.0\nboundary = \"wall\"\n"
+        "[[species]]\nname = \"P\"\nradius = 1.0\nposition = [0.0, 0.0]\nvelocity = [0.0, 0.0]\n"
+        "[[species]]\nname = \"Q\"\nradius = 1.0\nposition = [1.5, 0.0]\nvelocity = [0.0, 0.0]\n"
+        "[run]\ntime = 1.0\n",
+        {"particle 0", "particle 1", "overlap 0.5"});
 }
 
 TEST_F(BadInput, ParticleOutsideWalls) {
@@ -42,13 +45,17 @@ TEST_F(BadInput, ParticleOutsideWalls) {
 }
 
 TEST_F(BadInput, NonPositiveRadiusOrMass) {
-    expect_rejected(small_config("[[species]]\nname = \"P\"\ncount = 1\nradius = 0.0\n"), {"bad.toml", "radius", "positive"});
-    expect_rejected(small_config("[[species]]\nname = \"P\"\ncount = 1\nmass = -1.0\n"), {"bad.toml", "mass", "positive"});
+    expect_rejected(small_config("[[species]]\nname = \"P\"\ncount = 1\nradius = 0.0\n"),
+                    {"bad.toml", "radius", "positive"});
+    expect_rejected(small_config("[[species]]\nname = \"P\"\ncount = 1\nmass = -1.0\n"),
+                    {"bad.toml", "mass", "positive"});
 }
 
 TEST_F(BadInput, RestitutionOutsideUnitInterval) {
-    expect_rejected(small_config() + "[event]\nrestitution = 1.5\n", {"bad.toml", "event.restitution", "[0, 1]"});
-    expect_rejected(small_config() + "[event]\nwall_restitution = -0.1\n", {"event.wall_restitution"});
+    expect_rejected(small_config() + "[event]\nrestitution = 1.5\n",
+                    {"bad.toml", "event.restitution", "[0, 1]"});
+    expect_rejected(small_config() + "[event]\nwall_restitution = -0.1\n",
+                    {"event.wall_restitution"});
 }
 
 TEST_F(BadInput, BoxSmallerThanOneParticle) {
@@ -56,8 +63,9 @@ TEST_F(BadInput, BoxSmallerThanOneParticle) {
 }
 
 TEST_F(BadInput, NoParticles) {
-    expect_rejected("dimension = 2\n[box]\nlength = 10.0\n[[species]]\ncount = 0\n[run]\ntime = 1.0\n",
-                    {"bad.toml", "count", "N = 0"});
+    expect_rejected(
+        "dimension = 2\n[box]\nlength = 10.0\n[[species]]\ncount = 0\n[run]\ntime = 1.0\n",
+        {"bad.toml", "count", "N = 0"});
 }
 
 TEST_F(BadInput, NanAndInfinity) {
@@ -77,8 +85,10 @@ TEST_F(BadInput, MalformedTomlGivesLineAndColumn) {
 }
 
 TEST_F(BadInput, MalformedJsonInitialFileGivesLineAndColumn) {
-    write("init.json", "{\"system\": {\"particles\": [\n  {\"id\": 0, \"r\": [0.0, 0.0]},\n  {\"id\": 1 \"r\": [1.0, 1.0]}\n]}}\n");
-    expect_rejected("dimension = 2\n[box]\nlength = 20.0\n[initial]\nfile = \"init.json\"\n[[species]]\nname = \"A\"\n[run]\ntime = 1.0\n",
+    write("init.json", "{\"system\": {\"particles\": [\n  {\"id\": 0, \"r\": [0.0, 0.0]},\n  "
+                       "{\"id\": 1 \"r\": [1.0, 1.0]}\n]}}\n");
+    expect_rejected("dimension = 2\n[box]\nlength = 20.0\n[initial]\nfile = "
+                    "\"init.json\"\n[[species]]\nname = \"A\"\n[run]\ntime = 1.0\n",
                     {"init.json:3:"});
 }
 
@@ -97,13 +107,17 @@ TEST_F(BadInput, CorruptCheckpoint) {
 }
 
 TEST_F(BadInput, SpeciesNamesMustFitColumns) {
-    expect_rejected(small_config("[[species]]\nname = \"big disk\"\ncount = 1\n"), {"species[1].name", "without spaces"});
+    expect_rejected(small_config("[[species]]\nname = \"big disk\"\ncount = 1\n"),
+                    {"species[1].name", "without spaces"});
 }
 
 TEST_F(BadInput, ImpossibleStopCondition) {
-    expect_rejected(small_config("", "length = 20.0", "energy_fraction = 0.5"), {"run.energy_fraction", "never be reached"});
-    expect_rejected(small_config("", "length = 20.0", "energy_fraction = 1.5"), {"run.energy_fraction"});
-    expect_rejected(small_config("", "length = 20.0", "time = 1.0\ncolour = 2"), {"unknown key 'run.colour'"});
+    expect_rejected(small_config("", "length = 20.0", "energy_fraction = 0.5"),
+                    {"run.energy_fraction", "never be reached"});
+    expect_rejected(small_config("", "length = 20.0", "energy_fraction = 1.5"),
+                    {"run.energy_fraction"});
+    expect_rejected(small_config("", "length = 20.0", "time = 1.0\ncolour = 2"),
+                    {"unknown key 'run.colour'"});
     expect_rejected(small_config("", "length = 20.0", ""), {"[run] needs at least one of"});
 }
 

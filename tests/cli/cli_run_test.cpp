@@ -15,7 +15,8 @@ std::string config_with_time(double t) {
            "[[species]]\nname = \"A\"\ncount = 200\nradius = 0.5\n"
            "[[species]]\nname = \"B\"\ncount = 100\nradius = 0.7\nmass = 3.0\n"
            "[event]\nrestitution = 0.95\ntc = 1e-6\n"
-           "[run]\ntime = " + std::to_string(t) + "\n[output]\nlog_interval = 0.5\nprogress = false\n";
+           "[run]\ntime = " +
+           std::to_string(t) + "\n[output]\nlog_interval = 0.5\nprogress = false\n";
 }
 
 TEST_F(CliRun, RestartContinuesBitForBit) {
@@ -39,8 +40,9 @@ TEST_F(CliRun, RestartContinuesBitForBit) {
 }
 
 TEST_F(CliRun, FrozenSystemStopsInsteadOfLooping) {
-    write("frozen.toml", "dimension = 2\n[box]\nlength = 10.0\n[[species]]\ncount = 4\nvelocities = \"zero\"\n"
-                         "[run]\ncollisions_per_particle = 5\n[output]\nprogress = false\n");
+    write("frozen.toml",
+          "dimension = 2\n[box]\nlength = 10.0\n[[species]]\ncount = 4\nvelocities = \"zero\"\n"
+          "[run]\ncollisions_per_particle = 5\n[output]\nprogress = false\n");
     const CliResult r = run_pedesis("run frozen.toml --out out", dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("no more events"), std::string::npos) << r.output;
@@ -50,8 +52,8 @@ TEST_F(CliRun, OutputsParse) {
     write("run.toml", config_with_time(2.0));
     const CliResult r = run_pedesis("run run.toml --out out", dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    for (const char* f : {"config.toml", "log.csv", "trajectory.xyz", "speed_histogram.csv", "checkpoint.bin",
-                          "summary.json", "snapshots/frame_000000.json"})
+    for (const char* f : {"config.toml", "log.csv", "trajectory.xyz", "speed_histogram.csv",
+                          "checkpoint.bin", "summary.json", "snapshots/frame_000000.json"})
         EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "log.csv.part"));
     const auto snap = nlohmann::json::parse(read("out/snapshots/frame_000000.json"));
@@ -67,7 +69,8 @@ TEST_F(CliRun, OutputsParse) {
 }
 
 TEST_F(CliRun, BenchPrintsItsFigures) {
-    const CliResult r = run_pedesis("bench event --dim 3 --n 500 --eta 0.3 --time 0.5 --warmup 0.1", dir);
+    const CliResult r =
+        run_pedesis("bench event --dim 3 --n 500 --eta 0.3 --time 0.5 --warmup 0.1", dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("collisions_per_second: "), std::string::npos);
     EXPECT_NE(r.output.find("bytes_per_particle: "), std::string::npos);

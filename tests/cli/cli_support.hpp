@@ -17,7 +17,8 @@ struct CliResult {
 };
 
 inline CliResult run_pedesis(const std::string& args, const std::filesystem::path& cwd) {
-    const std::string cmd = "cd '" + cwd.string() + "' && '" + PEDESIS_BINARY + "' " + args + " 2>&1";
+    const std::string cmd =
+        "cd '" + cwd.string() + "' && '" + PEDESIS_BINARY + "' " + args + " 2>&1";
     CliResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
@@ -51,8 +52,9 @@ class ScratchDir : public ::testing::Test {
 };
 
 // A small valid config; tests replace pieces of it to make it invalid.
-inline std::string small_config(const std::string& extra_species = "", const std::string& box = "length = 20.0",
-                                 const std::string& run = "time = 2.0") {
+inline std::string small_config(const std::string& extra_species = "",
+                                const std::string& box = "length = 20.0",
+                                const std::string& run = "time = 2.0") {
     return "dimension = 2\nseed = 3\n[box]\n" + box + "\nboundary = \"wall\"\n" +
            "[[species]]\nname = \"A\"\ncount = 50\nradius = 0.5\nmass = 1.0\n" + extra_species +
            "[run]\n" + run + "\n[output]\nlog_interval = 0.5\nprogress = false\n";

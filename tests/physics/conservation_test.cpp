@@ -18,7 +18,8 @@ using namespace pedesis::test;
 namespace {
 
 // Independent O(N^2) overlap check on a snapshot (does not trust any cell list).
-template <int D> void expect_no_overlap_brute(const ParticleStore<D>& s, const Box<D>& box, const char* when) {
+template <int D>
+void expect_no_overlap_brute(const ParticleStore<D>& s, const Box<D>& box, const char* when) {
     double worst = INFINITY;
     for (std::size_t i = 0; i < s.size(); ++i)
         for (std::size_t j = i + 1; j < s.size(); ++j) {
@@ -27,7 +28,8 @@ template <int D> void expect_no_overlap_brute(const ParticleStore<D>& s, const B
         }
     EXPECT_GE(worst, 1.0 - 1e-9) << when << ": closest pair at " << worst << " of contact";
     for (std::size_t i = 0; i < s.size(); ++i)
-        EXPECT_TRUE(box.contains(s.position[i], s.radius(i) * (1.0 - 1e-9))) << when << ": particle " << s.tag[i];
+        EXPECT_TRUE(box.contains(s.position[i], s.radius(i) * (1.0 - 1e-9)))
+            << when << ": particle " << s.tag[i];
 }
 
 template <int D> std::uint64_t total_collisions(const EventEngine<D>& e) {
@@ -83,10 +85,18 @@ template <int D> void momentum_case(bool mixture) {
     EXPECT_NEAR(kinetic_energy(s), e0, 1e-11 * e0);
 }
 
-TEST(Conservation, MomentumPeriodic2D) { momentum_case<2>(false); }
-TEST(Conservation, MomentumPeriodic3D) { momentum_case<3>(false); }
-TEST(Conservation, MomentumPeriodicMixture2D) { momentum_case<2>(true); }
-TEST(Conservation, MomentumPeriodicMixture3D) { momentum_case<3>(true); }
+TEST(Conservation, MomentumPeriodic2D) {
+    momentum_case<2>(false);
+}
+TEST(Conservation, MomentumPeriodic3D) {
+    momentum_case<3>(false);
+}
+TEST(Conservation, MomentumPeriodicMixture2D) {
+    momentum_case<2>(true);
+}
+TEST(Conservation, MomentumPeriodicMixture3D) {
+    momentum_case<3>(true);
+}
 
 template <int D> void walled_momentum_case() {
     // walls: the momentum change of the gas is exactly what the walls gave it,
@@ -106,13 +116,18 @@ template <int D> void walled_momentum_case() {
     double impulse_scale = 0.0;
     for (int a = 0; a < D; ++a) impulse_scale += c.wall_impulse[a][0] + c.wall_impulse[a][1];
     for (int a = 0; a < D; ++a)
-        EXPECT_NEAR(P1[a] - P0[a], c.wall_impulse[a][0] - c.wall_impulse[a][1], 1e-12 * impulse_scale);
+        EXPECT_NEAR(P1[a] - P0[a], c.wall_impulse[a][0] - c.wall_impulse[a][1],
+                    1e-12 * impulse_scale);
     EXPECT_NEAR(kinetic_energy(s), e0, 1e-11 * e0);
     expect_no_overlap_brute(s, gas.box, "end of walled run");
 }
 
-TEST(Conservation, WallImpulseBalancesMomentum2D) { walled_momentum_case<2>(); }
-TEST(Conservation, WallImpulseBalancesMomentum3D) { walled_momentum_case<3>(); }
+TEST(Conservation, WallImpulseBalancesMomentum2D) {
+    walled_momentum_case<2>();
+}
+TEST(Conservation, WallImpulseBalancesMomentum3D) {
+    walled_momentum_case<3>();
+}
 
 template <int D> void dense_no_overlap_case(const GasSpec<D>& spec, std::uint64_t collisions) {
     auto gas = make_gas(spec);
@@ -173,7 +188,8 @@ TEST(NoOverlap, GasAmongFixedObstacles2D) {
         if (s.species[i] != 1) continue;
         EXPECT_EQ(norm2(s.velocity[i]), 0.0);
         const auto j = initial_index[s.tag[i]];
-        EXPECT_NEAR(norm(gas.box.minimum_image(s.position[i] - gas.particles.position[j])), 0.0, 1e-12);
+        EXPECT_NEAR(norm(gas.box.minimum_image(s.position[i] - gas.particles.position[j])), 0.0,
+                    1e-12);
     }
     EXPECT_NEAR(kinetic_energy(s), e0, 1e-10 * e0);
     expect_no_overlap_brute(s, gas.box, "end of run among posts");
@@ -181,7 +197,8 @@ TEST(NoOverlap, GasAmongFixedObstacles2D) {
 
 // ---- unusual geometries ---------------------------------------------------------------
 
-template <int D> ParticleStore<D> random_disks(const Box<D>& box, std::size_t n, double radius, std::uint64_t seed) {
+template <int D>
+ParticleStore<D> random_disks(const Box<D>& box, std::size_t n, double radius, std::uint64_t seed) {
     std::vector<Vec<D>> pos;
     std::vector<double> radii;
     PlacementRequest<D> req;
@@ -208,7 +225,8 @@ template <int D> ParticleStore<D> random_disks(const Box<D>& box, std::size_t n,
     return p;
 }
 
-template <int D> void geometry_case(const Box<D>& box, std::size_t n, std::uint64_t collisions, std::uint64_t seed) {
+template <int D>
+void geometry_case(const Box<D>& box, std::size_t n, std::uint64_t collisions, std::uint64_t seed) {
     auto p = random_disks<D>(box, n, 0.5, seed);
     const double e0 = kinetic_energy(p);
     const Vec<D> P0 = total_momentum(p);
@@ -230,7 +248,8 @@ template <int D> void geometry_case(const Box<D>& box, std::size_t n, std::uint6
         if (box.periodic(a)) {
             EXPECT_EQ(wall, 0.0);
         }
-        EXPECT_NEAR(P1[a] - P0[a], wall, 1e-10 * momentum_scale(s) * (1.0 + e.counters().wall_collisions));
+        EXPECT_NEAR(P1[a] - P0[a], wall,
+                    1e-10 * momentum_scale(s) * (1.0 + e.counters().wall_collisions));
     }
 }
 
@@ -245,10 +264,16 @@ TEST(Geometry, ThinPeriodicSlab3D) {
     geometry_case<3>(Box<3>(Vec<3>{{2.2, 8.0, 8.0}}, {true, true, true}), 60, 100'000, 4);
 }
 // Channel: periodic along x, walls along y (and a 3D duct)
-TEST(Geometry, Channel2D) { geometry_case<2>(Box<2>(Vec<2>{{40.0, 6.0}}, {true, false}), 120, 200'000, 5); }
-TEST(Geometry, Duct3D) { geometry_case<3>(Box<3>(Vec<3>{{20.0, 4.0, 3.0}}, {true, false, false}), 80, 200'000, 6); }
+TEST(Geometry, Channel2D) {
+    geometry_case<2>(Box<2>(Vec<2>{{40.0, 6.0}}, {true, false}), 120, 200'000, 5);
+}
+TEST(Geometry, Duct3D) {
+    geometry_case<3>(Box<3>(Vec<3>{{20.0, 4.0, 3.0}}, {true, false, false}), 80, 200'000, 6);
+}
 // Walls very close together: a single file of disks between walls 1.4 diameters apart
-TEST(Geometry, SingleFile2D) { geometry_case<2>(Box<2>(Vec<2>{{60.0, 1.4}}, {true, false}), 30, 50'000, 7); }
+TEST(Geometry, SingleFile2D) {
+    geometry_case<2>(Box<2>(Vec<2>{{60.0, 1.4}}, {true, false}), 30, 50'000, 7);
+}
 
 TEST(NoOverlap, LargeSizeRatioMixture2D) {
     // radii 2.5 and 0.3: a big disk has dozens of small neighbours, which outgrows the

@@ -32,14 +32,16 @@ template <int D> void equipartition_case(double eta) {
     spec.eta = eta;
     spec.seed = 31;
     auto gas = make_gas(spec);
-    const double T_light0 = kinetic_temperature(gas.particles, 0), T_heavy0 = kinetic_temperature(gas.particles, 1);
+    const double T_light0 = kinetic_temperature(gas.particles, 0),
+                 T_heavy0 = kinetic_temperature(gas.particles, 1);
     ASSERT_GT(T_heavy0 / T_light0, 3.5); // the test starts far from equipartition
 
     EventEngine<D> e(gas.particles, gas.box, EventParams{});
     const double n = static_cast<double>(gas.particles.size());
     auto run_collisions_per_particle = [&](double c) {
         StopLimits lim;
-        lim.pair_collisions = e.counters().pair_collisions + static_cast<std::uint64_t>(c * n / 2.0);
+        lim.pair_collisions =
+            e.counters().pair_collisions + static_cast<std::uint64_t>(c * n / 2.0);
         e.run(lim);
     };
     run_collisions_per_particle(30.0);
@@ -61,8 +63,8 @@ template <int D> void equipartition_case(double eta) {
     }
     const double ratio = sum_heavy / sum_light;
     const BlockStats b = block_stats(block_ratio);
-    std::printf("D %d: T_heavy / T_light = %.4f (block std error %.4f), initially %.2f\n", D, ratio, b.std_error,
-                T_heavy0 / T_light0);
+    std::printf("D %d: T_heavy / T_light = %.4f (block std error %.4f), initially %.2f\n", D, ratio,
+                b.std_error, T_heavy0 / T_light0);
     EXPECT_LT(b.std_error, 0.0075) << "run too short for the tolerance";
     EXPECT_NEAR(ratio, 1.0, 0.03);
     // and each species sits at the mixture's temperature
@@ -73,5 +75,9 @@ template <int D> void equipartition_case(double eta) {
 
 } // namespace
 
-TEST(Equipartition, MassRatioOneToFour2D) { equipartition_case<2>(0.3); }
-TEST(Equipartition, MassRatioOneToFour3D) { equipartition_case<3>(0.2); }
+TEST(Equipartition, MassRatioOneToFour2D) {
+    equipartition_case<2>(0.3);
+}
+TEST(Equipartition, MassRatioOneToFour3D) {
+    equipartition_case<3>(0.2);
+}

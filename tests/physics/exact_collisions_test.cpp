@@ -20,7 +20,8 @@ struct Body {
     std::vector<double> r, v;
 };
 
-template <int D> ParticleStore<D> bodies(const std::vector<Species>& table, const std::vector<Body>& list) {
+template <int D>
+ParticleStore<D> bodies(const std::vector<Species>& table, const std::vector<Body>& list) {
     ParticleStore<D> p;
     p.species_table = table;
     p.resize(list.size());
@@ -46,7 +47,8 @@ template <int D> Box<D> periodic(double L) {
     return Box<D>(Vec<D>::filled(L), per);
 }
 
-template <int D> EventEngine<D> run_to(ParticleStore<D> p, const Box<D>& box, double t, EventParams params = {}) {
+template <int D>
+EventEngine<D> run_to(ParticleStore<D> p, const Box<D>& box, double t, EventParams params = {}) {
     EventEngine<D> e(std::move(p), box, params);
     StopLimits lim;
     lim.time = t;
@@ -69,7 +71,8 @@ template <int D> double angle(const Vec<D>& a, const Vec<D>& b) {
         const double c = a[0] * b[1] - a[1] * b[0];
         cross2 = c * c;
     } else {
-        const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2], cz = a[0] * b[1] - a[1] * b[0];
+        const double cx = a[1] * b[2] - a[2] * b[1], cy = a[2] * b[0] - a[0] * b[2],
+                     cz = a[0] * b[1] - a[1] * b[0];
         cross2 = cx * cx + cy * cy + cz * cz;
     }
     return std::atan2(std::sqrt(cross2), dot(a, b));
@@ -77,7 +80,9 @@ template <int D> double angle(const Vec<D>& a, const Vec<D>& b) {
 
 // Scattering of a point of unit speed off a fixed (or very heavy) hard particle with
 // contact distance R = r1 + r2 at impact parameter b along direction `perp`.
-template <int D> Vec<D> scatter(double b, double obstacle_mass, const Vec<D>& perp, Vec<D>* obstacle_velocity = nullptr) {
+template <int D>
+Vec<D> scatter(double b, double obstacle_mass, const Vec<D>& perp,
+               Vec<D>* obstacle_velocity = nullptr) {
     const double r1 = 0.3, r2 = 0.7;
     std::vector<double> start(D, 0.0), zero(D, 0.0), v(D, 0.0);
     start[0] = -5.0;
@@ -128,8 +133,12 @@ template <int D> void wall_period_case() {
     EXPECT_EQ(e.counters().wall_collisions, static_cast<std::uint64_t>(3 * D));
 }
 
-TEST(ExactWalls, SquareBoxPeriod2D) { wall_period_case<2>(); }
-TEST(ExactWalls, CubeBoxPeriod3D) { wall_period_case<3>(); }
+TEST(ExactWalls, SquareBoxPeriod2D) {
+    wall_period_case<2>();
+}
+TEST(ExactWalls, CubeBoxPeriod3D) {
+    wall_period_case<3>();
+}
 
 TEST(ExactWalls, InelasticWall) {
     // normal velocity -> -xi v, tangential unchanged, wall receives m (1 + xi) |v|
@@ -249,7 +258,9 @@ template <int D> void sweep_case(const Vec<D>& perp) {
         EXPECT_NEAR(theta, pi - 2.0 * std::asin(b / R), 1e-9) << "b = " << b;
         EXPECT_NEAR(norm(out), 1.0, 1e-12);
         // the probe is deflected within the plane of incidence, away from the obstacle
-        if (k > 0) { EXPECT_GT(dot(out, perp), 0.0); }
+        if (k > 0) {
+            EXPECT_GT(dot(out, perp), 0.0);
+        }
     }
     // b > R: no collision at all
     std::vector<double> start(D, 0.0), zero(D, 0.0), v(D, 0.0);
@@ -262,8 +273,12 @@ template <int D> void sweep_case(const Vec<D>& perp) {
     EXPECT_EQ(e.counters().pair_collisions, 0u);
 }
 
-TEST(ExactScattering, AngleSweep2D) { sweep_case<2>(Vec<2>{{0.0, 1.0}}); }
-TEST(ExactScattering, AngleSweep3D) { sweep_case<3>(Vec<3>{{0.0, 0.6, -0.8}}); }
+TEST(ExactScattering, AngleSweep2D) {
+    sweep_case<2>(Vec<2>{{0.0, 1.0}});
+}
+TEST(ExactScattering, AngleSweep3D) {
+    sweep_case<3>(Vec<3>{{0.0, 0.6, -0.8}});
+}
 
 // ---- unequal masses: conservation and the closed-form result ---------------------------
 
@@ -272,7 +287,8 @@ template <int D> void unequal_mass_case() {
     std::vector<double> x1 = {-2.0, 0.3, -0.1}, x2 = {1.0, 0.0, 0.2};
     std::vector<double> w1 = {1.5, 0.1, 0.05}, w2 = {-0.5, 0.02, -0.03};
     x1.resize(D), x2.resize(D), w1.resize(D), w2.resize(D);
-    auto p = bodies<D>({Species{"light", r1, m1}, Species{"heavy", r2, m2}}, {Body{0, x1, w1}, Body{1, x2, w2}});
+    auto p = bodies<D>({Species{"light", r1, m1}, Species{"heavy", r2, m2}},
+                       {Body{0, x1, w1}, Body{1, x2, w2}});
 
     // closed form in long double: contact time, normal, post-collision velocities
     using ld = long double;
@@ -322,8 +338,12 @@ template <int D> void unequal_mass_case() {
     EXPECT_NEAR(vir, static_cast<double>(J * sig), 1e-12);
 }
 
-TEST(ExactUnequalMasses, ConserveMomentumAndEnergy2D) { unequal_mass_case<2>(); }
-TEST(ExactUnequalMasses, ConserveMomentumAndEnergy3D) { unequal_mass_case<3>(); }
+TEST(ExactUnequalMasses, ConserveMomentumAndEnergy2D) {
+    unequal_mass_case<2>();
+}
+TEST(ExactUnequalMasses, ConserveMomentumAndEnergy3D) {
+    unequal_mass_case<3>();
+}
 
 TEST(ExactObstacle, FixedParticleNeverMovesAndAbsorbsNoEnergy) {
     // a probe bouncing between a fixed post and a wall: elastic, the post stays put

@@ -63,15 +63,16 @@ TEST(HaffLaw, DiluteDisksRestitution09) {
             EXPECT_NEAR(e.kinetic_energy() + e.counters().energy_lost, e0, 1e-9 * e0);
             ratio_time[k].push_back(T / theory::haff_temperature(D, e.time(), T0, omega0, xi));
             const double C = static_cast<double>(e.counters().pair_collisions);
-            ratio_coll[k].push_back(T / (T0 * std::exp(-(1.0 - xi * xi) * C / (static_cast<double>(n) * D / 2.0))));
+            ratio_coll[k].push_back(
+                T / (T0 * std::exp(-(1.0 - xi * xi) * C / (static_cast<double>(n) * D / 2.0))));
         }
         // clearly cooled: the test cannot pass with an elastic engine
         EXPECT_LT(kinetic_temperature(e.snapshot()), 0.2 * T0);
     }
     for (std::size_t k = 0; k < fractions.size(); ++k) {
         const BlockStats bt = block_stats(ratio_time[k]), bc = block_stats(ratio_coll[k]);
-        std::printf("t = %.2f t0: T / T_Haff = %.4f +- %.4f; T / T(C) = %.4f +- %.4f\n", fractions[k], bt.mean,
-                    bt.std_error, bc.mean, bc.std_error);
+        std::printf("t = %.2f t0: T / T_Haff = %.4f +- %.4f; T / T(C) = %.4f +- %.4f\n",
+                    fractions[k], bt.mean, bt.std_error, bc.mean, bc.std_error);
         EXPECT_LT(bt.std_error, 0.0125) << "too few runs for the tolerance";
         EXPECT_NEAR(bt.mean, 1.0, 0.05) << "Haff's law at t = " << fractions[k] << " t0";
         EXPECT_NEAR(bc.mean, 1.0, 0.05) << "energy per collision at t = " << fractions[k] << " t0";

@@ -80,12 +80,24 @@ template <int D> void without_tc_runs_or_reports_collapse(bool periodic, std::ui
 
 } // namespace
 
-TEST(InelasticCollapse, TcModelPreventsCollapse2D) { tc_prevents_collapse<2>(true, 1); }
-TEST(InelasticCollapse, TcModelPreventsCollapseWalled2D) { tc_prevents_collapse<2>(false, 2); }
-TEST(InelasticCollapse, TcModelPreventsCollapse3D) { tc_prevents_collapse<3>(true, 3); }
-TEST(InelasticCollapse, WithoutTcRunsOrReportsCollapse2D) { without_tc_runs_or_reports_collapse<2>(true, 1); }
-TEST(InelasticCollapse, WithoutTcRunsOrReportsCollapseWalled2D) { without_tc_runs_or_reports_collapse<2>(false, 2); }
-TEST(InelasticCollapse, WithoutTcRunsOrReportsCollapse3D) { without_tc_runs_or_reports_collapse<3>(true, 3); }
+TEST(InelasticCollapse, TcModelPreventsCollapse2D) {
+    tc_prevents_collapse<2>(true, 1);
+}
+TEST(InelasticCollapse, TcModelPreventsCollapseWalled2D) {
+    tc_prevents_collapse<2>(false, 2);
+}
+TEST(InelasticCollapse, TcModelPreventsCollapse3D) {
+    tc_prevents_collapse<3>(true, 3);
+}
+TEST(InelasticCollapse, WithoutTcRunsOrReportsCollapse2D) {
+    without_tc_runs_or_reports_collapse<2>(true, 1);
+}
+TEST(InelasticCollapse, WithoutTcRunsOrReportsCollapseWalled2D) {
+    without_tc_runs_or_reports_collapse<2>(false, 2);
+}
+TEST(InelasticCollapse, WithoutTcRunsOrReportsCollapse3D) {
+    without_tc_runs_or_reports_collapse<3>(true, 3);
+}
 
 TEST(InelasticCollapse, StickyPairStaysTogetherWithoutEvents) {
     // restitution 0: a head-on pair ends with zero relative velocity in contact and must
@@ -136,6 +148,7 @@ TEST(InelasticCollapse, TrackedKineticEnergyStaysAccurateWhenCooledDeeply) {
         EXPECT_NEAR(true_ke, std::pow(0.09, static_cast<double>(c)), 1e-9 * true_ke); // closed form
         EXPECT_GE(e.kinetic_energy(), 0.0) << "after " << c << " collisions";
         EXPECT_NEAR(e.kinetic_energy(), true_ke, 1e-6 * true_ke)
-            << "after " << c << " collisions: tracked " << e.kinetic_energy() << " vs sum of m v^2 / 2 " << true_ke;
+            << "after " << c << " collisions: tracked " << e.kinetic_energy()
+            << " vs sum of m v^2 / 2 " << true_ke;
     }
 }

@@ -3,10 +3,10 @@
 // running to 2T; in 2D and 3D, periodic and walled, elastic and inelastic with the TC
 // model (tc ~ 20-40% of the mean free time at the restart, so that many collisions right after the
 // restart depend on the saved per-particle collision clocks; checked by mutation: an
-// engine that does not save them fails these tests). ~20 collisions per particle in each half, so any state the checkpoint leaves
-// out (event calendar, neighbour lists, per-particle times, counters, TC clocks) would
-// change the trajectory and be caught: hard-particle dynamics is chaotic, and one
-// different bit grows to O(1) within a few collision times.
+// engine that does not save them fails these tests). ~20 collisions per particle in each half, so
+// any state the checkpoint leaves out (event calendar, neighbour lists, per-particle times,
+// counters, TC clocks) would change the trajectory and be caught: hard-particle dynamics is
+// chaotic, and one different bit grows to O(1) within a few collision times.
 #include "pedesis/core/error.hpp"
 #include "pedesis/event/event_engine.hpp"
 #include "support/gas_builder.hpp"
@@ -29,7 +29,8 @@ template <int D> void expect_same_counters(const EventCounters<D>& a, const Even
     EXPECT_EQ(a.stale_events, b.stale_events);
     EXPECT_TRUE(same_bits(a.virial, b.virial));
     for (int k = 0; k < D; ++k)
-        for (int side = 0; side < 2; ++side) EXPECT_TRUE(same_bits(a.wall_impulse[k][side], b.wall_impulse[k][side]));
+        for (int side = 0; side < 2; ++side)
+            EXPECT_TRUE(same_bits(a.wall_impulse[k][side], b.wall_impulse[k][side]));
     EXPECT_TRUE(same_bits(a.energy_lost, b.energy_lost));
 }
 
@@ -51,8 +52,8 @@ template <int D> void expect_same_state(const EventEngine<D>& a, const EventEngi
 }
 
 template <int D> void restart_case(bool periodic, double restitution, double tc) {
-    SCOPED_TRACE(std::string(periodic ? "periodic" : "walled") + " restitution " + std::to_string(restitution) +
-                 " tc " + std::to_string(tc));
+    SCOPED_TRACE(std::string(periodic ? "periodic" : "walled") + " restitution " +
+                 std::to_string(restitution) + " tc " + std::to_string(tc));
     auto gas = make_gas(equal_gas<D>(D == 2 ? 800 : 500, D == 2 ? 0.45 : 0.35, periodic, 77));
     EventParams params;
     params.restitution = restitution;
@@ -91,14 +92,30 @@ template <int D> void restart_case(bool periodic, double restitution, double tc)
 
 } // namespace
 
-TEST(Restart, BitForBitPeriodic2D) { restart_case<2>(true, 1.0, 0.0); }
-TEST(Restart, BitForBitWalled2D) { restart_case<2>(false, 1.0, 0.0); }
-TEST(Restart, BitForBitPeriodic3D) { restart_case<3>(true, 1.0, 0.0); }
-TEST(Restart, BitForBitWalled3D) { restart_case<3>(false, 1.0, 0.0); }
-TEST(Restart, BitForBitInelasticTcPeriodic2D) { restart_case<2>(true, 0.7, 0.05); }
-TEST(Restart, BitForBitInelasticTcWalled2D) { restart_case<2>(false, 0.7, 0.05); }
-TEST(Restart, BitForBitInelasticTcPeriodic3D) { restart_case<3>(true, 0.7, 0.03); }
-TEST(Restart, BitForBitInelasticTcWalled3D) { restart_case<3>(false, 0.7, 0.03); }
+TEST(Restart, BitForBitPeriodic2D) {
+    restart_case<2>(true, 1.0, 0.0);
+}
+TEST(Restart, BitForBitWalled2D) {
+    restart_case<2>(false, 1.0, 0.0);
+}
+TEST(Restart, BitForBitPeriodic3D) {
+    restart_case<3>(true, 1.0, 0.0);
+}
+TEST(Restart, BitForBitWalled3D) {
+    restart_case<3>(false, 1.0, 0.0);
+}
+TEST(Restart, BitForBitInelasticTcPeriodic2D) {
+    restart_case<2>(true, 0.7, 0.05);
+}
+TEST(Restart, BitForBitInelasticTcWalled2D) {
+    restart_case<2>(false, 0.7, 0.05);
+}
+TEST(Restart, BitForBitInelasticTcPeriodic3D) {
+    restart_case<3>(true, 0.7, 0.03);
+}
+TEST(Restart, BitForBitInelasticTcWalled3D) {
+    restart_case<3>(false, 0.7, 0.03);
+}
 
 TEST(Restart, ManyRestartsInARow) {
     // ten save/load cycles (3D, walls, TC model with tc ~ a mean free time, so that the

@@ -48,15 +48,22 @@ template <int D> void relaxation_case(double eta, double collisions_per_particle
     const auto s = e.snapshot();
     EXPECT_NEAR(kinetic_temperature(s), T, 1e-12);
     const double d_final = ks_to_equilibrium(s, T);
-    std::printf("D %d: KS distance initial %.4f, after %.0f collisions/particle %.4f (critical %.4f)\n", D,
-                d_initial, collisions_per_particle, d_final, critical);
+    std::printf(
+        "D %d: KS distance initial %.4f, after %.0f collisions/particle %.4f (critical %.4f)\n", D,
+        d_initial, collisions_per_particle, d_final, critical);
     EXPECT_LT(d_final, critical) << "speeds have not relaxed to the equilibrium distribution";
     // the test is sharp enough to see a wrong temperature: 30% off is rejected
     auto v = speeds(s);
-    EXPECT_GT(theory::ks_distance(v, [&](double x) { return theory::speed_cdf(D, x, 1.3 * T, 1.0); }), critical);
+    EXPECT_GT(
+        theory::ks_distance(v, [&](double x) { return theory::speed_cdf(D, x, 1.3 * T, 1.0); }),
+        critical);
 }
 
 } // namespace
 
-TEST(SpeedDistribution, RelaxesToRayleigh2D) { relaxation_case<2>(0.3, 10.0); }
-TEST(SpeedDistribution, RelaxesToMaxwell3D) { relaxation_case<3>(0.2, 10.0); }
+TEST(SpeedDistribution, RelaxesToRayleigh2D) {
+    relaxation_case<2>(0.3, 10.0);
+}
+TEST(SpeedDistribution, RelaxesToMaxwell3D) {
+    relaxation_case<3>(0.2, 10.0);
+}

@@ -10,11 +10,11 @@
 // packing fraction of the reachable region, 1 + 2 eta g (2D), 1 + 4 eta g (3D), to 0.2%.
 //
 // Statistics: the impulse of one hit is 2 m |v_n|; were the hits independent, the
-// relative error of the total would be ~1.1 / sqrt(hits), 0.3% for the 1e5 (2D) / 4e5 (3D) hits used
-// (fixed total energy and nearly ballistic motion make it much smaller: measured 0.02%
-// (2D) and 0.03% (3D) standard errors from 20 blocks). The test asserts the block
-// standard error is below 0.05%, a quarter of the tighter tolerance. Each wall on its
-// own must agree to 4% (it gets a quarter, a sixth of the hits).
+// relative error of the total would be ~1.1 / sqrt(hits), 0.3% for the 1e5 (2D) / 4e5 (3D) hits
+// used (fixed total energy and nearly ballistic motion make it much smaller: measured 0.02% (2D)
+// and 0.03% (3D) standard errors from 20 blocks). The test asserts the block standard error is
+// below 0.05%, a quarter of the tighter tolerance. Each wall on its own must agree to 4% (it gets a
+// quarter, a sixth of the hits).
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/observe/theory.hpp"
 #include "support/gas_builder.hpp"
@@ -42,13 +42,15 @@ template <int D> void ideal_gas_walls(std::size_t n, double L, double block_time
     EventParams params;
     params.skin = D == 2 ? 4.0 : 1.5; // sparse gas: long neighbour-list lifetimes
     EventEngine<D> e(gas.particles, gas.box, params);
-    const double T = 2.0 * e.kinetic_energy() / (D * static_cast<double>(n)); // exact, no momentum constraint
+    const double T =
+        2.0 * e.kinetic_energy() / (D * static_cast<double>(n)); // exact, no momentum constraint
     const double reach = L - 2.0 * 0.05;
     const double volume = std::pow(reach, D);
     const double face = volume / reach; // area (length in 2D) of one wall seen by the centres
     auto total_impulse = [&] {
         double s = 0.0;
-        for (int a = 0; a < D; ++a) s += e.counters().wall_impulse[a][0] + e.counters().wall_impulse[a][1];
+        for (int a = 0; a < D; ++a)
+            s += e.counters().wall_impulse[a][0] + e.counters().wall_impulse[a][1];
         return s;
     };
     StopLimits lim;
@@ -66,8 +68,9 @@ template <int D> void ideal_gas_walls(std::size_t n, double L, double block_time
     }
     const BlockStats r = block_stats(ratio);
     const double hits = static_cast<double>(e.counters().wall_collisions - start.wall_collisions);
-    std::printf("D %d: P V / (N T) = %.4f +- %.4f from %.0f wall hits (%llu pair collisions)\n", D, r.mean,
-                r.std_error, hits, static_cast<unsigned long long>(e.counters().pair_collisions));
+    std::printf("D %d: P V / (N T) = %.4f +- %.4f from %.0f wall hits (%llu pair collisions)\n", D,
+                r.mean, r.std_error, hits,
+                static_cast<unsigned long long>(e.counters().pair_collisions));
     const double eta_reach = static_cast<double>(n) * particle_volume(D, 0.05) / volume;
     const double z = theory::compressibility_factor(D, eta_reach);
     std::printf("     second virial: Z(eta = %.2e) = %.4f\n", eta_reach, z);
@@ -78,13 +81,19 @@ template <int D> void ideal_gas_walls(std::size_t n, double L, double block_time
     const double t = e.time() - t_start;
     for (int a = 0; a < D; ++a)
         for (int side = 0; side < 2; ++side) {
-            const double P = (e.counters().wall_impulse[a][side] - start.wall_impulse[a][side]) / (t * face);
-            EXPECT_NEAR(P * volume / (static_cast<double>(n) * T), 1.0, 0.04) << "axis " << a << " side " << side;
+            const double P =
+                (e.counters().wall_impulse[a][side] - start.wall_impulse[a][side]) / (t * face);
+            EXPECT_NEAR(P * volume / (static_cast<double>(n) * T), 1.0, 0.04)
+                << "axis " << a << " side " << side;
         }
     EXPECT_NEAR(e.kinetic_energy(), kinetic_energy(e.snapshot()), 1e-10 * e.kinetic_energy());
 }
 
 } // namespace
 
-TEST(WallPressure, IdealGas2D) { ideal_gas_walls<2>(500, 50.0, 300.0); }
-TEST(WallPressure, IdealGas3D) { ideal_gas_walls<3>(1000, 12.0, 100.0); }
+TEST(WallPressure, IdealGas2D) {
+    ideal_gas_walls<2>(500, 50.0, 300.0);
+}
+TEST(WallPressure, IdealGas3D) {
+    ideal_gas_walls<3>(1000, 12.0, 100.0);
+}

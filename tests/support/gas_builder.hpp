@@ -36,9 +36,9 @@ struct SpeciesSpec {
 
 template <int D> struct GasSpec {
     std::vector<SpeciesSpec> species{SpeciesSpec{1000, 0.5, 1.0, -1.0}};
-    double eta = 0.2;                     // packing fraction over the whole box volume
-    Vec<D> aspect = Vec<D>::filled(1.0);  // box edge ratios (scaled to give eta)
-    bool periodic = true;                 // all axes periodic, or all axes walled
+    double eta = 0.2;                    // packing fraction over the whole box volume
+    Vec<D> aspect = Vec<D>::filled(1.0); // box edge ratios (scaled to give eta)
+    bool periodic = true;                // all axes periodic, or all axes walled
     Placement placement = Placement::lattice;
     VelocityKind velocity = VelocityKind::maxwell_boltzmann; // or equal_speed
     double temperature = 1.0;
@@ -57,8 +57,8 @@ inline double particle_volume(int dim, double radius) {
 }
 
 // Convenience: N equal particles of diameter 1 and mass 1.
-template <int D> GasSpec<D> equal_gas(std::size_t n, double eta, bool periodic = true,
-                                      std::uint64_t seed = 1) {
+template <int D>
+GasSpec<D> equal_gas(std::size_t n, double eta, bool periodic = true, std::uint64_t seed = 1) {
     GasSpec<D> g;
     g.species = {SpeciesSpec{n, 0.5, 1.0, -1.0}};
     g.eta = eta;
@@ -96,11 +96,13 @@ std::vector<Vec<D>> lattice_with_random_vacancies(const Vec<D>& lo, const Vec<D>
         volume *= L[a];
         aspect_volume *= aspect[a];
     }
-    const double edge = std::pow(volume * static_cast<double>(basis.size()) / (static_cast<double>(n) * aspect_volume),
+    const double edge = std::pow(volume * static_cast<double>(basis.size()) /
+                                     (static_cast<double>(n) * aspect_volume),
                                  1.0 / D);
     std::array<std::size_t, D> cells;
     for (int a = 0; a < D; ++a)
-        cells[a] = std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(L[a] / (edge * aspect[a]))));
+        cells[a] = std::max<std::size_t>(
+            1, static_cast<std::size_t>(std::floor(L[a] / (edge * aspect[a]))));
     auto total = [&] {
         std::size_t t = basis.size();
         for (int a = 0; a < D; ++a) t *= cells[a];
@@ -143,7 +145,8 @@ std::vector<Vec<D>> lattice_with_random_vacancies(const Vec<D>& lo, const Vec<D>
     CounterRng rng(seed, RngStream::placement, 0xfffffffeu);
     for (std::size_t m = 0; m < n; ++m) {
         const std::size_t left = idx.size() - m;
-        const auto j = m + static_cast<std::size_t>(rng.uniform() * static_cast<double>(left)) % left;
+        const auto j =
+            m + static_cast<std::size_t>(rng.uniform() * static_cast<double>(left)) % left;
         std::swap(idx[m], idx[j]);
     }
     idx.resize(n);
@@ -326,7 +329,9 @@ template <int D> std::vector<double> speeds(const ParticleStore<D>& p) {
     return s;
 }
 
-inline bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+inline bool same_bits(double a, double b) {
+    return std::memcmp(&a, &b, sizeof(double)) == 0;
+}
 
 template <int D> bool same_bits(const Vec<D>& a, const Vec<D>& b) {
     return std::memcmp(a.c.data(), b.c.data(), sizeof(double) * D) == 0;

@@ -16,14 +16,15 @@
 namespace pedesis::test {
 
 struct ZMeasurement {
-    BlockStats z;                // block mean and standard error of Z
-    BlockStats frequency;        // collisions per particle per unit time (2 x pairs / N / t)
-    double temperature = 0.0;    // 2 K / (D N)
+    BlockStats z;             // block mean and standard error of Z
+    BlockStats frequency;     // collisions per particle per unit time (2 x pairs / N / t)
+    double temperature = 0.0; // 2 K / (D N)
     double collisions_per_particle = 0.0; // during the measurement
 };
 
 template <int D>
-ZMeasurement measure_z(const GasSpec<D>& spec, double t_equilibrate, int blocks, double block_time) {
+ZMeasurement measure_z(const GasSpec<D>& spec, double t_equilibrate, int blocks,
+                       double block_time) {
     auto gas = make_gas(spec);
     EventEngine<D> e(gas.particles, gas.box, EventParams{});
     StopLimits lim;

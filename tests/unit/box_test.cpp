@@ -24,10 +24,12 @@ double brute_min_image(double d, double L) {
 TEST(Box, RejectsBadLengths) {
     EXPECT_THROW((Box<2>(Vec<2>{{0.0, 1.0}}, {true, true})), InputError);
     EXPECT_THROW((Box<2>(Vec<2>{{-1.0, 1.0}}, {true, true})), InputError);
-    EXPECT_THROW((Box<3>(Vec<3>{{1.0, std::numeric_limits<double>::quiet_NaN(), 1.0}}, {true, true, true})),
-                 InputError);
-    EXPECT_THROW((Box<3>(Vec<3>{{1.0, 1.0, std::numeric_limits<double>::infinity()}}, {true, true, true})),
-                 InputError);
+    EXPECT_THROW(
+        (Box<3>(Vec<3>{{1.0, std::numeric_limits<double>::quiet_NaN(), 1.0}}, {true, true, true})),
+        InputError);
+    EXPECT_THROW(
+        (Box<3>(Vec<3>{{1.0, 1.0, std::numeric_limits<double>::infinity()}}, {true, true, true})),
+        InputError);
 }
 
 TEST(Box, CentredAtOrigin) {

@@ -19,7 +19,8 @@ namespace {
 template <int D> std::string describe(const Box<D>& box, double cutoff) {
     std::string s = "L = (";
     for (int a = 0; a < D; ++a)
-        s += std::to_string(box.length(a)) + (box.periodic(a) ? "p" : "w") + (a + 1 < D ? ", " : ")");
+        s += std::to_string(box.length(a)) + (box.periodic(a) ? "p" : "w") +
+             (a + 1 < D ? ", " : ")");
     return s + " cutoff " + std::to_string(cutoff);
 }
 
@@ -43,9 +44,8 @@ std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, std::uint
 }
 
 template <int D>
-std::set<std::pair<std::uint32_t, std::uint32_t>> brute_pairs(const Box<D>& box,
-                                                              const std::vector<Vec<D>>& pos,
-                                                              double cutoff) {
+std::set<std::pair<std::uint32_t, std::uint32_t>>
+brute_pairs(const Box<D>& box, const std::vector<Vec<D>>& pos, double cutoff) {
     std::set<std::pair<std::uint32_t, std::uint32_t>> s;
     for (std::uint32_t i = 0; i < pos.size(); ++i)
         for (std::uint32_t j = i + 1; j < pos.size(); ++j)
@@ -54,9 +54,9 @@ std::set<std::pair<std::uint32_t, std::uint32_t>> brute_pairs(const Box<D>& box,
 }
 
 template <int D>
-std::set<std::pair<std::uint32_t, std::uint32_t>> cell_pairs(const Box<D>& box, const CellList<D>& cells,
-                                                             const std::vector<Vec<D>>& pos, double cutoff,
-                                                             const std::vector<bool>& present) {
+std::set<std::pair<std::uint32_t, std::uint32_t>>
+cell_pairs(const Box<D>& box, const CellList<D>& cells, const std::vector<Vec<D>>& pos,
+           double cutoff, const std::vector<bool>& present) {
     std::set<std::pair<std::uint32_t, std::uint32_t>> s;
     for (std::uint32_t i = 0; i < pos.size(); ++i) {
         if (!present[i]) continue;
@@ -69,18 +69,22 @@ std::set<std::pair<std::uint32_t, std::uint32_t>> cell_pairs(const Box<D>& box, 
         });
         for (std::uint32_t j = 0; j < pos.size(); ++j) {
             EXPECT_LE(visits[j], 1) << "particle " << j << " visited twice from " << i;
-            if (!present[j]) { EXPECT_EQ(visits[j], 0) << "removed particle " << j << " still listed"; }
+            if (!present[j]) {
+                EXPECT_EQ(visits[j], 0) << "removed particle " << j << " still listed";
+            }
         }
         EXPECT_EQ(visits[i], 1) << "particle " << i << " not found in its own cell";
     }
     return s;
 }
 
-template <int D> void check_box(const Box<D>& box, double cutoff, std::size_t n, std::uint64_t seed) {
+template <int D>
+void check_box(const Box<D>& box, double cutoff, std::size_t n, std::uint64_t seed) {
     SCOPED_TRACE(describe(box, cutoff));
     auto pos = random_positions(box, n, seed);
     CellList<D> cells(box, cutoff);
-    for (int a = 0; a < D; ++a) EXPECT_GE(cells.cell_width(a), std::min(cutoff, box.length(a)) * (1 - 1e-12));
+    for (int a = 0; a < D; ++a)
+        EXPECT_GE(cells.cell_width(a), std::min(cutoff, box.length(a)) * (1 - 1e-12));
     cells.build(pos);
     std::vector<bool> present(n, true);
     const auto expected = brute_pairs(box, pos, cutoff);
@@ -142,8 +146,9 @@ TEST(CellList, MatchesBruteForce2D) {
     std::uint64_t seed = 1;
     // cutoff 1: axes with 1, 2, 3 and many cells; square and elongated boxes
     for (bool periodic : {true, false}) {
-        for (const auto& L : {Vec<2>{{1.5, 1.5}}, Vec<2>{{2.5, 2.5}}, Vec<2>{{1.2, 9.0}}, Vec<2>{{2.9, 7.3}},
-                              Vec<2>{{3.0, 3.0}}, Vec<2>{{10.0, 10.0}}, Vec<2>{{17.3, 4.1}}}) {
+        for (const auto& L :
+             {Vec<2>{{1.5, 1.5}}, Vec<2>{{2.5, 2.5}}, Vec<2>{{1.2, 9.0}}, Vec<2>{{2.9, 7.3}},
+              Vec<2>{{3.0, 3.0}}, Vec<2>{{10.0, 10.0}}, Vec<2>{{17.3, 4.1}}}) {
             check_box(Box<2>(L, {periodic, periodic}), 1.0, 120, seed++);
         }
     }
@@ -157,8 +162,9 @@ TEST(CellList, MatchesBruteForce2D) {
 TEST(CellList, MatchesBruteForce3D) {
     std::uint64_t seed = 100;
     for (bool periodic : {true, false}) {
-        for (const auto& L : {Vec<3>{{1.5, 1.5, 1.5}}, Vec<3>{{2.5, 2.5, 2.5}}, Vec<3>{{1.2, 2.2, 6.0}},
-                              Vec<3>{{3.0, 4.5, 5.0}}, Vec<3>{{6.0, 6.0, 6.0}}}) {
+        for (const auto& L :
+             {Vec<3>{{1.5, 1.5, 1.5}}, Vec<3>{{2.5, 2.5, 2.5}}, Vec<3>{{1.2, 2.2, 6.0}},
+              Vec<3>{{3.0, 4.5, 5.0}}, Vec<3>{{6.0, 6.0, 6.0}}}) {
             check_box(Box<3>(L, {periodic, periodic, periodic}), 1.0, 150, seed++);
         }
     }

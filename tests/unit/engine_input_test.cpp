@@ -32,9 +32,12 @@ ParticleStore<2> five() {
     return p;
 }
 
-Box<2> box10(bool periodic) { return Box<2>(Vec<2>{{10.0, 10.0}}, {periodic, periodic}); }
+Box<2> box10(bool periodic) {
+    return Box<2>(Vec<2>{{10.0, 10.0}}, {periodic, periodic});
+}
 
-std::string input_error_message(const ParticleStore<2>& p, const Box<2>& box, const EventParams& params) {
+std::string input_error_message(const ParticleStore<2>& p, const Box<2>& box,
+                                const EventParams& params) {
     try {
         EventEngine<2> e(p, box, params);
     } catch (const InputError& err) {
@@ -138,7 +141,9 @@ TEST(EngineInput, NoParticles) {
     expect_input_error(p, box10(true), EventParams{}, "N = 0");
     ParticleStore<3> q;
     q.species_table = {Species{"A", 0.5, 1.0}};
-    EXPECT_THROW((EventEngine<3>(q, Box<3>(Vec<3>::filled(10.0), {true, true, true}), EventParams{})), InputError);
+    EXPECT_THROW(
+        (EventEngine<3>(q, Box<3>(Vec<3>::filled(10.0), {true, true, true}), EventParams{})),
+        InputError);
 }
 
 TEST(EngineInput, NonFiniteState) {
@@ -167,7 +172,8 @@ TEST(EngineInput, BoxSmallerThanAParticle) {
         expect_input_error(p, Box<2>(Vec<2>{{3.0, 10.0}}, {periodic, periodic}), EventParams{},
                            "diameter 4 in a box 3 wide");
     // periodic: the box must also be wider than twice the contact distance
-    expect_input_error(p, Box<2>(Vec<2>{{6.0, 20.0}}, {true, true}), EventParams{}, "periodic 6 < 2 x 4");
+    expect_input_error(p, Box<2>(Vec<2>{{6.0, 20.0}}, {true, true}), EventParams{},
+                       "periodic 6 < 2 x 4");
 }
 
 TEST(EngineInput, FixedObstaclesAreAccepted) {
@@ -177,5 +183,7 @@ TEST(EngineInput, FixedObstaclesAreAccepted) {
     p.velocity[2] = Vec<2>{{3.0, 3.0}}; // ignored: obstacles never move
     EventEngine<2> e(p, box10(false), EventParams{});
     for (std::size_t i = 0; i < e.size(); ++i)
-        if (e.lazy_particles().species[i] == 1) { EXPECT_EQ(norm2(e.lazy_particles().velocity[i]), 0.0); }
+        if (e.lazy_particles().species[i] == 1) {
+            EXPECT_EQ(norm2(e.lazy_particles().velocity[i]), 0.0);
+        }
 }

@@ -17,7 +17,8 @@ template <int D> double brute_pair_time(const Vec<D>& dr, const Vec<D>& dv, doub
     auto f = [&](long double t) {
         long double s = 0.0L;
         for (int a = 0; a < D; ++a) {
-            const long double x = static_cast<long double>(dr[a]) + static_cast<long double>(dv[a]) * t;
+            const long double x =
+                static_cast<long double>(dr[a]) + static_cast<long double>(dv[a]) * t;
             s += x * x;
         }
         return s - static_cast<long double>(sigma) * sigma;
@@ -75,8 +76,12 @@ template <int D> void check_pair_times(std::uint64_t seed) {
         for (double factor : {0.5, 0.999, 1.001, 2.0}) {
             const double bound = ref * factor;
             const double tb = pair_collision_time_before(dr, dv, sigma, bound);
-            if (t < bound) { EXPECT_EQ(tb, t); }
-            if (tb != never) { EXPECT_EQ(tb, t); }
+            if (t < bound) {
+                EXPECT_EQ(tb, t);
+            }
+            if (tb != never) {
+                EXPECT_EQ(tb, t);
+            }
         }
     }
     EXPECT_GT(hits, 500);
@@ -85,8 +90,12 @@ template <int D> void check_pair_times(std::uint64_t seed) {
 
 } // namespace
 
-TEST(Prediction, PairTimeMatchesBruteForce2D) { check_pair_times<2>(1); }
-TEST(Prediction, PairTimeMatchesBruteForce3D) { check_pair_times<3>(2); }
+TEST(Prediction, PairTimeMatchesBruteForce2D) {
+    check_pair_times<2>(1);
+}
+TEST(Prediction, PairTimeMatchesBruteForce3D) {
+    check_pair_times<3>(2);
+}
 
 TEST(Prediction, PairTimeSimpleCases) {
     // head-on, gap 2, closing speed 2: t = 1
@@ -98,7 +107,8 @@ TEST(Prediction, PairTimeSimpleCases) {
     // passing side by side (closest approach 1.5 > sigma)
     EXPECT_EQ(pair_collision_time(Vec<2>{{3.0, 1.5}}, Vec<2>{{-1.0, 0.0}}, 1.0), never);
     // impact parameter b < sigma: t = (3 - sqrt(sigma^2 - b^2)) / |v|
-    EXPECT_NEAR(pair_collision_time(Vec<3>{{3.0, 0.6, 0.0}}, Vec<3>{{-1.0, 0.0, 0.0}}, 1.0), 3.0 - 0.8, 1e-15);
+    EXPECT_NEAR(pair_collision_time(Vec<3>{{3.0, 0.6, 0.0}}, Vec<3>{{-1.0, 0.0, 0.0}}, 1.0),
+                3.0 - 0.8, 1e-15);
     // overlapping by a rounding error and approaching: collide at once
     EXPECT_EQ(pair_collision_time(Vec<2>{{1.0 - 1e-14, 0.0}}, Vec<2>{{-1.0, 0.0}}, 1.0), 0.0);
     // overlapping and receding: no event
@@ -106,8 +116,10 @@ TEST(Prediction, PairTimeSimpleCases) {
     // touching and sliding tangentially: no event
     EXPECT_EQ(pair_collision_time(Vec<2>{{1.0, 0.0}}, Vec<2>{{0.0, 1.0}}, 1.0), never);
     // bounded variant with a bound beyond the event
-    EXPECT_DOUBLE_EQ(pair_collision_time_before(Vec<2>{{3.0, 0.0}}, Vec<2>{{-2.0, 0.0}}, 1.0, 5.0), 1.0);
-    EXPECT_EQ(pair_collision_time_before(Vec<2>{{3.0, 0.0}}, Vec<2>{{-2.0, 0.0}}, 1.0, 0.25), never);
+    EXPECT_DOUBLE_EQ(pair_collision_time_before(Vec<2>{{3.0, 0.0}}, Vec<2>{{-2.0, 0.0}}, 1.0, 5.0),
+                     1.0);
+    EXPECT_EQ(pair_collision_time_before(Vec<2>{{3.0, 0.0}}, Vec<2>{{-2.0, 0.0}}, 1.0, 0.25),
+              never);
 }
 
 TEST(Prediction, WallTime) {
@@ -125,7 +137,8 @@ TEST(Prediction, WallTime) {
 
     CounterRng rng(3, RngStream::placement, 0);
     for (int trial = 0; trial < 10000; ++trial) {
-        const double lo = rng.uniform(-10.0, -1.0), hi = rng.uniform(1.0, 10.0), rad = rng.uniform(0.01, 0.9);
+        const double lo = rng.uniform(-10.0, -1.0), hi = rng.uniform(1.0, 10.0),
+                     rad = rng.uniform(0.01, 0.9);
         const double x = rng.uniform(lo + rad, hi - rad), v = rng.uniform(-3.0, 3.0);
         const double t = wall_collision_time(x, v, lo, hi, rad);
         const double target = v > 0 ? hi - rad : lo + rad;

@@ -29,17 +29,20 @@ TEST(Theory, SpeedCdfIsIntegralOfPdf) {
         for (double T : {0.5, 1.0, 3.0}) {
             for (double m : {1.0, 4.0}) {
                 const double scale = std::sqrt(T / m);
-                EXPECT_NEAR(simpson([&](double v) { return theory::speed_pdf(d, v, T, m); }, 0.0, 12.0 * scale, 4000),
+                EXPECT_NEAR(simpson([&](double v) { return theory::speed_pdf(d, v, T, m); }, 0.0,
+                                    12.0 * scale, 4000),
                             1.0, 1e-10);
                 for (double x : {0.3, 1.0, 1.7, 3.0}) {
                     const double v = x * scale;
                     EXPECT_NEAR(theory::speed_cdf(d, v, T, m),
-                                simpson([&](double u) { return theory::speed_pdf(d, u, T, m); }, 0.0, v, 2000), 1e-10)
+                                simpson([&](double u) { return theory::speed_pdf(d, u, T, m); },
+                                        0.0, v, 2000),
+                                1e-10)
                         << "d " << d << " T " << T << " m " << m << " v " << v;
                 }
                 // mean square speed d T / m
-                EXPECT_NEAR(simpson([&](double v) { return v * v * theory::speed_pdf(d, v, T, m); }, 0.0,
-                                    12.0 * scale, 4000),
+                EXPECT_NEAR(simpson([&](double v) { return v * v * theory::speed_pdf(d, v, T, m); },
+                                    0.0, 12.0 * scale, 4000),
                             d * T / m, 1e-9 * d * T / m);
             }
         }
@@ -58,12 +61,15 @@ TEST(Theory, SpeedCdfIsIntegralOfPdf) {
 TEST(Theory, CompressibilityFactorsAndContactValues) {
     for (double eta : {0.0, 0.05, 0.2, 0.4, 0.6}) {
         // PHYSICS.md
-        EXPECT_NEAR(theory::compressibility_factor(2, eta), (1 + eta * eta / 8) / ((1 - eta) * (1 - eta)), 1e-14);
+        EXPECT_NEAR(theory::compressibility_factor(2, eta),
+                    (1 + eta * eta / 8) / ((1 - eta) * (1 - eta)), 1e-14);
         EXPECT_NEAR(theory::compressibility_factor(3, eta),
                     (1 + eta + eta * eta - eta * eta * eta) / std::pow(1 - eta, 3), 1e-13);
         // virial route at contact: Z = 1 + 2 eta g (2D), 1 + 4 eta g (3D)
-        EXPECT_NEAR(theory::compressibility_factor(2, eta), 1 + 2 * eta * theory::contact_value(2, eta), 1e-13);
-        EXPECT_NEAR(theory::compressibility_factor(3, eta), 1 + 4 * eta * theory::contact_value(3, eta), 1e-13);
+        EXPECT_NEAR(theory::compressibility_factor(2, eta),
+                    1 + 2 * eta * theory::contact_value(2, eta), 1e-13);
+        EXPECT_NEAR(theory::compressibility_factor(3, eta),
+                    1 + 4 * eta * theory::contact_value(3, eta), 1e-13);
     }
     // second virial coefficients: Z = 1 + 2 eta + ... (disks), 1 + 4 eta + 10 eta^2 (spheres)
     const double h = 1e-4;
@@ -76,12 +82,15 @@ TEST(Theory, CompressibilityFactorsAndContactValues) {
 
 TEST(Theory, EnskogFrequencyAndHaff) {
     const double n = 0.1, sigma = 1.0, T = 2.0, m = 1.5;
-    const double eta2 = theory::packing_fraction(2, n, sigma), eta3 = theory::packing_fraction(3, n, sigma);
+    const double eta2 = theory::packing_fraction(2, n, sigma),
+                 eta3 = theory::packing_fraction(3, n, sigma);
     EXPECT_NEAR(theory::enskog_collision_frequency(2, n, sigma, T, m),
-                2 * std::sqrt(std::numbers::pi) * n * sigma * theory::contact_value(2, eta2) * std::sqrt(T / m), 1e-14);
-    EXPECT_NEAR(theory::enskog_collision_frequency(3, n, sigma, T, m),
-                4 * std::sqrt(std::numbers::pi) * n * sigma * sigma * theory::contact_value(3, eta3) *
+                2 * std::sqrt(std::numbers::pi) * n * sigma * theory::contact_value(2, eta2) *
                     std::sqrt(T / m),
+                1e-14);
+    EXPECT_NEAR(theory::enskog_collision_frequency(3, n, sigma, T, m),
+                4 * std::sqrt(std::numbers::pi) * n * sigma * sigma *
+                    theory::contact_value(3, eta3) * std::sqrt(T / m),
                 1e-14);
     // Haff: T(0) = T0; initial slope dT/dt = -(1 - xi^2) omega0 T0 / d, i.e. each
     // collision (N omega / 2 per unit time) removes (1 - xi^2) T on average
@@ -104,12 +113,14 @@ TEST(Theory, KolmogorovSmirnov) {
         const double u = (k + 0.5) / n;
         q[k] = std::sqrt(-2.0 * std::log(1.0 - u)); // Rayleigh, T = m = 1
     }
-    EXPECT_LE(theory::ks_distance(q, [](double v) { return theory::speed_cdf(2, v, 1.0, 1.0); }), 1.0 / n + 1e-12);
+    EXPECT_LE(theory::ks_distance(q, [](double v) { return theory::speed_cdf(2, v, 1.0, 1.0); }),
+              1.0 / n + 1e-12);
     // all samples at one value: distance max(F, 1 - F) there
     std::vector<double> same(n, std::sqrt(2.0));
     const double F = 1.0 - std::exp(-1.0);
-    EXPECT_NEAR(theory::ks_distance(same, [](double v) { return theory::speed_cdf(2, v, 1.0, 1.0); }),
-                std::max(F, 1.0 - F), 1e-12);
+    EXPECT_NEAR(
+        theory::ks_distance(same, [](double v) { return theory::speed_cdf(2, v, 1.0, 1.0); }),
+        std::max(F, 1.0 - F), 1e-12);
     // critical value c(alpha) / sqrt(n): c(0.05) = 1.358, c(0.001) = 1.949
     EXPECT_NEAR(theory::ks_critical(10000, 0.05) * 100.0, 1.358, 1e-3);
     EXPECT_NEAR(theory::ks_critical(10000, 0.001) * 100.0, 1.949, 1e-3);

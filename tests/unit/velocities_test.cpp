@@ -13,10 +13,12 @@ using namespace pedesis;
 
 namespace {
 
-template <int D> ParticleStore<D> store(std::size_t n, const VelocitySpec& spec, std::uint64_t seed,
-                                         bool with_obstacle = false) {
+template <int D>
+ParticleStore<D> store(std::size_t n, const VelocitySpec& spec, std::uint64_t seed,
+                       bool with_obstacle = false) {
     ParticleStore<D> p;
-    p.species_table = {Species{"light", 0.5, 1.0}, Species{"heavy", 0.5, 7.5}, Species{"wall", 0.5, INFINITY}};
+    p.species_table = {Species{"light", 0.5, 1.0}, Species{"heavy", 0.5, 7.5},
+                       Species{"wall", 0.5, INFINITY}};
     p.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         p.tag[i] = static_cast<std::uint32_t>(i);
@@ -83,19 +85,24 @@ template <int D> void maxwell_case() {
         std::size_t k = 0;
         for (std::size_t i = 0; i < n; ++i)
             if (p.species[i] == s)
-                for (int a = 0; a < D; ++a, ++k) sum += p.mass(i) * p.velocity[i][a] * p.velocity[i][a];
+                for (int a = 0; a < D; ++a, ++k)
+                    sum += p.mass(i) * p.velocity[i][a] * p.velocity[i][a];
         EXPECT_NEAR(sum / k / 2.5, 1.0, 5.0 * std::sqrt(2.0 / k)) << "species " << s;
     }
     // obstacles are drawn at rest
     for (std::size_t i = 0; i < n; ++i)
-        if (p.species[i] == 2) { EXPECT_EQ(norm2(p.velocity[i]), 0.0); }
+        if (p.species[i] == 2) {
+            EXPECT_EQ(norm2(p.velocity[i]), 0.0);
+        }
 
     remove_drift(p, all(n));
     double scale = 0.0;
     const Vec<D> P = momentum(p, scale);
     for (int a = 0; a < D; ++a) EXPECT_LT(std::abs(P[a]), 1e-13 * scale);
     for (std::size_t i = 0; i < n; ++i)
-        if (p.species[i] == 2) { EXPECT_EQ(norm2(p.velocity[i]), 0.0); }
+        if (p.species[i] == 2) {
+            EXPECT_EQ(norm2(p.velocity[i]), 0.0);
+        }
 
     rescale_temperature(p, all(n), 2.5);
     EXPECT_NEAR(temperature(p), 2.5, 2.5 * 1e-14);
@@ -116,10 +123,18 @@ template <int D> void maxwell_case() {
 
 } // namespace
 
-TEST(Velocities, EqualSpeed2D) { equal_speed_case<2>(); }
-TEST(Velocities, EqualSpeed3D) { equal_speed_case<3>(); }
-TEST(Velocities, MaxwellRescaleAndDrift2D) { maxwell_case<2>(); }
-TEST(Velocities, MaxwellRescaleAndDrift3D) { maxwell_case<3>(); }
+TEST(Velocities, EqualSpeed2D) {
+    equal_speed_case<2>();
+}
+TEST(Velocities, EqualSpeed3D) {
+    equal_speed_case<3>();
+}
+TEST(Velocities, MaxwellRescaleAndDrift2D) {
+    maxwell_case<2>();
+}
+TEST(Velocities, MaxwellRescaleAndDrift3D) {
+    maxwell_case<3>();
+}
 
 TEST(Velocities, KeyedBySeedAndTagOnly) {
     VelocitySpec spec;

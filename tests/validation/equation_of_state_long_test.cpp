@@ -27,7 +27,8 @@ using namespace pedesis::test;
 namespace {
 
 double z_klm(double eta) {
-    return (1.0 + eta + eta * eta - 2.0 / 3.0 * eta * eta * eta * (1.0 + eta)) / std::pow(1.0 - eta, 3);
+    return (1.0 + eta + eta * eta - 2.0 / 3.0 * eta * eta * eta * (1.0 + eta)) /
+           std::pow(1.0 - eta, 3);
 }
 
 struct Case {
@@ -39,9 +40,11 @@ template <int D> void run_case(const Case& c) {
     const auto spec = equal_gas<D>(4000, c.eta, true, 7);
     const ZMeasurement m = measure_z<D>(spec, D == 2 ? 50.0 : 20.0, 100, c.block_time);
     const double z_ref = theory::compressibility_factor(D, c.eta);
-    std::printf("D %d eta %.2f: Z = %.5f +- %.5f, %s %.5f (%+.3f%%)", D, c.eta, m.z.mean, m.z.std_error,
-                D == 2 ? "Henderson" : "Carnahan-Starling", z_ref, 100.0 * (m.z.mean / z_ref - 1.0));
-    if (D == 3) std::printf(", KLM %.5f (%+.3f%%)", z_klm(c.eta), 100.0 * (m.z.mean / z_klm(c.eta) - 1.0));
+    std::printf("D %d eta %.2f: Z = %.5f +- %.5f, %s %.5f (%+.3f%%)", D, c.eta, m.z.mean,
+                m.z.std_error, D == 2 ? "Henderson" : "Carnahan-Starling", z_ref,
+                100.0 * (m.z.mean / z_ref - 1.0));
+    if (D == 3)
+        std::printf(", KLM %.5f (%+.3f%%)", z_klm(c.eta), 100.0 * (m.z.mean / z_klm(c.eta) - 1.0));
     std::printf("\n");
     EXPECT_LT(m.z.std_error, 0.2 * c.tol_main * z_ref);
     EXPECT_NEAR(m.z.mean, z_ref, c.tol_main * z_ref);
@@ -54,8 +57,9 @@ template <int D> void run_case(const Case& c) {
 } // namespace
 
 TEST(EquationOfStateLong, HardDisksHenderson) {
-    for (const Case& c : {Case{0.1, 20.0, 0.005, 0}, Case{0.2, 20.0, 0.005, 0}, Case{0.3, 10.0, 0.005, 0},
-                          Case{0.4, 10.0, 0.005, 0}, Case{0.5, 5.0, 0.01, 0}})
+    for (const Case& c :
+         {Case{0.1, 20.0, 0.005, 0}, Case{0.2, 20.0, 0.005, 0}, Case{0.3, 10.0, 0.005, 0},
+          Case{0.4, 10.0, 0.005, 0}, Case{0.5, 5.0, 0.01, 0}})
         run_case<2>(c);
 }
 

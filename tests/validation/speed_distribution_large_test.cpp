@@ -27,7 +27,8 @@ template <int D> void large_case(double eta) {
     lim.pair_collisions = 20 * n / 2;
     e.run(lim);
     auto v = speeds(e.snapshot());
-    const double d = theory::ks_distance(v, [&](double x) { return theory::speed_cdf(D, x, T, 1.0); });
+    const double d =
+        theory::ks_distance(v, [&](double x) { return theory::speed_cdf(D, x, T, 1.0); });
     const double critical = theory::ks_critical(n, 0.01);
     std::printf("D %d N %zu: KS distance %.5f (critical %.5f)\n", D, n, d, critical);
     EXPECT_LT(d, critical);
@@ -35,5 +36,9 @@ template <int D> void large_case(double eta) {
 
 } // namespace
 
-TEST(SpeedDistributionLarge, Rayleigh2D) { large_case<2>(0.3); }
-TEST(SpeedDistributionLarge, Maxwell3D) { large_case<3>(0.2); }
+TEST(SpeedDistributionLarge, Rayleigh2D) {
+    large_case<2>(0.3);
+}
+TEST(SpeedDistributionLarge, Maxwell3D) {
+    large_case<3>(0.2);
+}

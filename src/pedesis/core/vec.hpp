@@ -45,8 +45,12 @@ template <int D> constexpr double dot(const Vec<D>& a, const Vec<D>& b) {
     return s;
 }
 
-template <int D> constexpr double norm2(const Vec<D>& a) { return dot(a, a); }
-template <int D> inline double norm(const Vec<D>& a) { return std::sqrt(norm2(a)); }
+template <int D> constexpr double norm2(const Vec<D>& a) {
+    return dot(a, a);
+}
+template <int D> inline double norm(const Vec<D>& a) {
+    return std::sqrt(norm2(a));
+}
 
 template <int D> inline bool all_finite(const Vec<D>& a) {
     for (int k = 0; k < D; ++k)

@@ -20,10 +20,13 @@ void validate(const EventParams& p) {
         throw InputError("event.restitution must lie in [0, 1]");
     if (!(p.wall_restitution >= 0.0 && p.wall_restitution <= 1.0))
         throw InputError("event.wall_restitution must lie in [0, 1]");
-    if (!(p.tc >= 0.0 && std::isfinite(p.tc))) throw InputError("event.tc must be a finite number >= 0");
+    if (!(p.tc >= 0.0 && std::isfinite(p.tc)))
+        throw InputError("event.tc must be a finite number >= 0");
 }
 
-std::string tag_name(std::uint32_t tag) { return "particle " + std::to_string(tag); }
+std::string tag_name(std::uint32_t tag) {
+    return "particle " + std::to_string(tag);
+}
 
 } // namespace
 
@@ -39,7 +42,8 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
         if (!(s.radius > 0.0 && std::isfinite(s.radius)))
             throw InputError("species '" + s.name + "': radius must be positive and finite");
         if (!(s.mass > 0.0) || std::isnan(s.mass))
-            throw InputError("species '" + s.name + "': mass must be positive (inf for a fixed obstacle)");
+            throw InputError("species '" + s.name +
+                             "': mass must be positive (inf for a fixed obstacle)");
         radius_.push_back(s.radius);
         inv_mass_.push_back(s.inverse_mass());
         max_radius = std::max(max_radius, s.radius);
@@ -79,8 +83,9 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
         const double r = radius_[p_.species[i]];
         if (!box_.contains(p_.position[i], r * (1.0 - 1e-12))) {
             std::ostringstream m;
-            m << tag_name(p_.tag[i]) << " lies outside the walls (centre must be at least its radius "
-              << r << " from every wall)";
+            m << tag_name(p_.tag[i])
+              << " lies outside the walls (centre must be at least its radius " << r
+              << " from every wall)";
             throw InputError(m.str());
         }
         box_.wrap(p_.position[i]);
@@ -229,7 +234,8 @@ template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_
     const Vec<D> n = dr * (1.0 / dist);
     double xi = params_.restitution;
     if (params_.tc > 0.0) {
-        if (now_ - last_collision_[i] < params_.tc || now_ - last_collision_[j] < params_.tc) xi = 1.0;
+        if (now_ - last_collision_[i] < params_.tc || now_ - last_collision_[j] < params_.tc)
+            xi = 1.0;
         last_collision_[i] = last_collision_[j] = now_;
     }
     const PairImpulse res = collide_pair(p_.velocity[i], p_.velocity[j], n,
@@ -271,7 +277,8 @@ template <int D> void EventEngine<D>::process_wall(std::uint32_t i, std::int32_t
 template <int D> void EventEngine<D>::resum_kinetic_energy() {
     double k = 0.0;
     for (std::size_t i = 0; i < p_.size(); ++i)
-        if (inv_mass_[p_.species[i]] > 0.0) k += 0.5 * norm2(p_.velocity[i]) / inv_mass_[p_.species[i]];
+        if (inv_mass_[p_.species[i]] > 0.0)
+            k += 0.5 * norm2(p_.velocity[i]) / inv_mass_[p_.species[i]];
     kinetic_ = kinetic_exact_ = k;
 }
 
@@ -343,7 +350,8 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
             process_wall(i, partner);
         predict(i);
         queue_.update(i, ev_time_[i]);
-        if (partner != shell_event && kinetic_ <= limits.min_kinetic_energy) return StopReason::energy;
+        if (partner != shell_event && kinetic_ <= limits.min_kinetic_energy)
+            return StopReason::energy;
     }
 }
 
@@ -391,9 +399,8 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
             const double c = contact(i, j);
             if (d < c * (1.0 - rel_tol)) {
                 std::ostringstream m;
-                m << tag_name(s.tag[i]) << " and " << tag_name(s.tag[j])
-                  << " overlap: centres " << d << " apart, contact distance " << c
-                  << " (overlap " << c - d << ")";
+                m << tag_name(s.tag[i]) << " and " << tag_name(s.tag[j]) << " overlap: centres "
+                  << d << " apart, contact distance " << c << " (overlap " << c - d << ")";
                 if (now_ == 0.0 && counters_.pair_collisions == 0) throw InputError(m.str());
                 throw RunError("at t = " + std::to_string(now_) + ": " + m.str());
             }
@@ -403,8 +410,8 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
 
 template <int D> std::size_t EventEngine<D>::memory_bytes() const {
     auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-    return bytes(p_.position) + bytes(p_.velocity) + bytes(p_.tag) + bytes(p_.species) +
-           bytes(t_) + bytes(centre_) + bytes(count_) + bytes(ev_time_) + bytes(ev_partner_) +
+    return bytes(p_.position) + bytes(p_.velocity) + bytes(p_.tag) + bytes(p_.species) + bytes(t_) +
+           bytes(centre_) + bytes(count_) + bytes(ev_time_) + bytes(ev_partner_) +
            bytes(ev_count_) + bytes(last_collision_) + bytes(n_nbr_) + bytes(nbr_) +
            cells_.memory_bytes() + queue_.memory_bytes();
 }
@@ -522,7 +529,8 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     for (std::size_t i = 0; i < n; ++i) {
         if (e.n_nbr_[i] > e.stride_) throw InputError("checkpoint: corrupt neighbour list");
         for (std::uint16_t k = 0; k < e.n_nbr_[i]; ++k)
-            if (e.nbr_[i * e.stride_ + k] >= n) throw InputError("checkpoint: corrupt neighbour list");
+            if (e.nbr_[i * e.stride_ + k] >= n)
+                throw InputError("checkpoint: corrupt neighbour list");
         if (e.ev_partner_[i] >= static_cast<std::int32_t>(n))
             throw InputError("checkpoint: corrupt event");
     }

@@ -38,7 +38,7 @@ template <int D> struct EventCounters {
     std::uint64_t wall_collisions = 0;
     std::uint64_t list_rebuilds = 0;
     std::uint64_t stale_events = 0;
-    Vec<D> virial{};                           // sum over collisions of J n_a r_ij,a
+    Vec<D> virial{};                                     // sum over collisions of J n_a r_ij,a
     std::array<std::array<double, 2>, D> wall_impulse{}; // momentum given to each wall
     double energy_lost = 0.0;
 };
@@ -117,8 +117,8 @@ template <int D> class EventEngine {
     std::vector<double> radius_;   // per species
     std::vector<double> inv_mass_; // per species
 
-    std::vector<double> t_;           // time of r_i
-    std::vector<Vec<D>> centre_;      // neighbour-list centre
+    std::vector<double> t_;            // time of r_i
+    std::vector<Vec<D>> centre_;       // neighbour-list centre
     std::vector<std::uint32_t> count_; // collision counter
     std::vector<double> ev_time_;
     std::vector<std::int32_t> ev_partner_;

@@ -20,7 +20,8 @@ template <class T> void put(std::ostream& out, const T& v) {
 template <class T> void put(std::ostream& out, const std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     put<std::uint64_t>(out, v.size());
-    out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+    out.write(reinterpret_cast<const char*>(v.data()),
+              static_cast<std::streamsize>(v.size() * sizeof(T)));
 }
 
 inline void put(std::ostream& out, const std::string& s) {
@@ -37,7 +38,8 @@ template <class T> void get(std::istream& in, T& v) {
 template <class T> void get(std::istream& in, std::vector<T>& v) {
     std::uint64_t n = 0;
     get(in, n);
-    if (n > (std::uint64_t{1} << 40) / sizeof(T)) throw InputError("checkpoint: corrupt array length");
+    if (n > (std::uint64_t{1} << 40) / sizeof(T))
+        throw InputError("checkpoint: corrupt array length");
     v.resize(n);
     in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
     if (!in) throw InputError("checkpoint: file is truncated or corrupt");

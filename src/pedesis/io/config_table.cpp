@@ -27,7 +27,9 @@ toml::table parse_toml_file(const std::string& path) {
 ConfigTable::ConfigTable(const toml::table& table, std::string file, std::string prefix)
     : table_(&table), file_(std::move(file)), prefix_(std::move(prefix)) {}
 
-bool ConfigTable::has(const std::string& key) const { return table_->contains(key); }
+bool ConfigTable::has(const std::string& key) const {
+    return table_->contains(key);
+}
 
 const toml::node* ConfigTable::node(const std::string& key) {
     used_.insert(key);
@@ -95,7 +97,8 @@ std::optional<bool> ConfigTable::boolean(const std::string& key) {
     fail(key, "expected true or false");
 }
 
-std::optional<std::vector<double>> ConfigTable::numbers(const std::string& key, std::size_t expected_size) {
+std::optional<std::vector<double>> ConfigTable::numbers(const std::string& key,
+                                                        std::size_t expected_size) {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;
     const toml::array* arr = n->as_array();
@@ -116,7 +119,8 @@ std::optional<std::vector<double>> ConfigTable::numbers(const std::string& key, 
     return out;
 }
 
-std::optional<std::vector<std::string>> ConfigTable::strings(const std::string& key, std::size_t expected_size) {
+std::optional<std::vector<std::string>> ConfigTable::strings(const std::string& key,
+                                                             std::size_t expected_size) {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;
     if (auto s = n->value_exact<std::string>()) return std::vector<std::string>(expected_size, *s);
@@ -161,7 +165,8 @@ void ConfigTable::finish() const {
         if (!used_.count(key)) {
             std::ostringstream m;
             m << file_;
-            if (v.source().begin.line > 0) m << ":" << v.source().begin.line << ":" << v.source().begin.column;
+            if (v.source().begin.line > 0)
+                m << ":" << v.source().begin.line << ":" << v.source().begin.column;
             m << ": unknown key '" << full_key(key) << "' (see docs/config.md for the keys)";
             throw InputError(m.str());
         }

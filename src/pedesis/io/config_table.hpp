@@ -26,7 +26,8 @@ class ConfigTable {
     std::optional<bool> boolean(const std::string& key);
     std::optional<std::vector<double>> numbers(const std::string& key, std::size_t expected_size);
     // A string, or a list of `expected_size` strings.
-    std::optional<std::vector<std::string>> strings(const std::string& key, std::size_t expected_size);
+    std::optional<std::vector<std::string>> strings(const std::string& key,
+                                                    std::size_t expected_size);
 
     std::optional<ConfigTable> table(const std::string& key);
     std::vector<ConfigTable> tables(const std::string& key); // array of tables [[key]]
@@ -37,7 +38,9 @@ class ConfigTable {
     // "file:line:column: key 'prefix.key'" for messages about a value.
     std::string where(const std::string& key) const;
     const std::string& file() const { return file_; }
-    std::string full_key(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+    std::string full_key(const std::string& key) const {
+        return prefix_.empty() ? key : prefix_ + "." + key;
+    }
 
   private:
     const toml::node* node(const std::string& key);

@@ -24,7 +24,9 @@ void read_box(ConfigTable& t, RunConfig& c) {
     else
         throw InputError(c.file + ": [box] needs length (cube) or lengths (one per axis)");
     for (double l : c.box_lengths)
-        if (!(l > 0.0)) throw InputError(box->where(box->has("lengths") ? "lengths" : "length") + ": must be positive");
+        if (!(l > 0.0))
+            throw InputError(box->where(box->has("lengths") ? "lengths" : "length") +
+                             ": must be positive");
     const auto b = box->strings("boundary", d).value_or(std::vector<std::string>(d, "periodic"));
     for (const auto& s : b) {
         if (s != "periodic" && s != "wall")
@@ -52,24 +54,32 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
     std::set<std::string> names;
     for (auto& t : list) {
         SpeciesConfig s = defaults;
-        s.name = t.string("name").value_or(std::string(1, static_cast<char>('A' + c.species.size() % 26)));
+        s.name = t.string("name").value_or(
+            std::string(1, static_cast<char>('A' + c.species.size() % 26)));
         if (s.name.empty() || s.name.find_first_of(" \t\n\",'") != std::string::npos)
-            throw InputError(t.where("name") + ": a species name must be non-empty, without spaces, commas or quotes");
-        if (!names.insert(s.name).second) throw InputError(t.where("name") + ": duplicate species name '" + s.name + "'");
+            throw InputError(
+                t.where("name") +
+                ": a species name must be non-empty, without spaces, commas or quotes");
+        if (!names.insert(s.name).second)
+            throw InputError(t.where("name") + ": duplicate species name '" + s.name + "'");
         if (auto n = t.integer("count")) {
-            if (*n <= 0) throw InputError(t.where("count") + ": must be a positive integer (N = 0 has nothing to simulate)");
+            if (*n <= 0)
+                throw InputError(t.where("count") +
+                                 ": must be a positive integer (N = 0 has nothing to simulate)");
             s.count = static_cast<std::size_t>(*n);
         }
         s.radius = t.number("radius", 0.5);
         if (!(s.radius > 0)) throw InputError(t.where("radius") + ": must be positive");
         auto m = t.number("mass", true);
         s.mass = m.value_or(1.0);
-        if (!(s.mass > 0)) throw InputError(t.where("mass") + ": must be positive (inf makes a fixed obstacle)");
+        if (!(s.mass > 0))
+            throw InputError(t.where("mass") + ": must be positive (inf makes a fixed obstacle)");
         if (auto p = t.string("positions")) s.positions = *p;
         if (auto r = t.table("region")) {
             s.region_lo = r->numbers("lo", d);
             s.region_hi = r->numbers("hi", d);
-            if (!s.region_lo || !s.region_hi) throw InputError(t.where("region") + ": needs lo and hi");
+            if (!s.region_lo || !s.region_hi)
+                throw InputError(t.where("region") + ": needs lo and hi");
             for (std::size_t a = 0; a < d; ++a)
                 if (!((*s.region_lo)[a] < (*s.region_hi)[a]))
                     throw InputError(t.where("region") + ": lo must be below hi on every axis");
@@ -84,7 +94,8 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
         if (s.positions == "point" && !s.point)
             throw InputError(t.where("positions") + ": 'point' needs position = [..]");
         if (s.positions == "point" && s.count && *s.count != 1)
-            throw InputError(t.where("count") + ": a species placed at one point must have count = 1");
+            throw InputError(t.where("count") +
+                             ": a species placed at one point must have count = 1");
         if (s.positions == "point") s.count = 1;
         t.finish();
         c.species.push_back(s);
@@ -103,7 +114,8 @@ RunConfig load_run_config(const std::string& path) {
     c.dimension = static_cast<int>(dim);
     c.dynamics = root.string("dynamics").value_or("event");
     if (c.dynamics != "event")
-        throw InputError(root.where("dynamics") + ": '" + c.dynamics + "' is not available (this build has: event)");
+        throw InputError(root.where("dynamics") + ": '" + c.dynamics +
+                         "' is not available (this build has: event)");
     if (auto s = root.integer("seed")) {
         if (*s < 0) throw InputError(root.where("seed") + ": must be >= 0");
         c.seed = static_cast<std::uint64_t>(*s);
@@ -139,56 +151,69 @@ RunConfig load_run_config(const std::string& path) {
         c.tc = ev->number("tc", 0.0);
         if (c.tc < 0) throw InputError(ev->where("tc") + ": must be >= 0");
         c.skin = ev->number("skin", -1.0);
-        if (ev->has("skin") && !(c.skin > 0)) throw InputError(ev->where("skin") + ": must be positive");
+        if (ev->has("skin") && !(c.skin > 0))
+            throw InputError(ev->where("skin") + ": must be positive");
         c.check_overlaps = ev->boolean("check_overlaps").value_or(false);
         ev->finish();
     }
 
     auto run = root.table("run");
-    if (!run) throw InputError(path + ": missing [run] table (give time, collisions_per_particle or energy_fraction)");
+    if (!run)
+        throw InputError(
+            path + ": missing [run] table (give time, collisions_per_particle or energy_fraction)");
     c.stop_time = run->number("time");
     c.stop_collisions_per_particle = run->number("collisions_per_particle");
     c.stop_energy_fraction = run->number("energy_fraction");
-    if (c.stop_time && !(*c.stop_time > 0)) throw InputError(run->where("time") + ": must be positive");
+    if (c.stop_time && !(*c.stop_time > 0))
+        throw InputError(run->where("time") + ": must be positive");
     if (c.stop_collisions_per_particle && !(*c.stop_collisions_per_particle > 0))
         throw InputError(run->where("collisions_per_particle") + ": must be positive");
     if (c.stop_energy_fraction && !(*c.stop_energy_fraction > 0 && *c.stop_energy_fraction < 1))
         throw InputError(run->where("energy_fraction") + ": must lie in (0, 1)");
     if (!c.stop_time && !c.stop_collisions_per_particle && !c.stop_energy_fraction)
-        throw InputError(path + ": [run] needs at least one of time, collisions_per_particle, energy_fraction");
+        throw InputError(
+            path + ": [run] needs at least one of time, collisions_per_particle, energy_fraction");
     run->finish();
 
-    if (c.stop_energy_fraction && !c.stop_time && !c.stop_collisions_per_particle && c.restitution == 1.0 &&
-        c.wall_restitution == 1.0)
-        throw InputError(run->where("energy_fraction") +
-                         ": can never be reached with elastic collisions (event.restitution = 1 and "
-                         "event.wall_restitution = 1); add run.time or run.collisions_per_particle");
+    if (c.stop_energy_fraction && !c.stop_time && !c.stop_collisions_per_particle &&
+        c.restitution == 1.0 && c.wall_restitution == 1.0)
+        throw InputError(
+            run->where("energy_fraction") +
+            ": can never be reached with elastic collisions (event.restitution = 1 and "
+            "event.wall_restitution = 1); add run.time or run.collisions_per_particle");
 
     if (auto out = root.table("output")) {
         c.log_interval = out->number("log_interval", c.log_interval);
-        if (!(c.log_interval > 0)) throw InputError(out->where("log_interval") + ": must be positive");
+        if (!(c.log_interval > 0))
+            throw InputError(out->where("log_interval") + ": must be positive");
         c.snapshot_interval = out->number("snapshot_interval", 0.0);
-        if (c.snapshot_interval < 0) throw InputError(out->where("snapshot_interval") + ": must be >= 0");
+        if (c.snapshot_interval < 0)
+            throw InputError(out->where("snapshot_interval") + ": must be >= 0");
         if (out->has("formats")) {
             const toml::node* n = doc["output"]["formats"].node();
             const auto* arr = n ? n->as_array() : nullptr;
             c.formats.clear();
-            if (!arr) throw InputError(out->where("formats") + ": expected a list such as [\"xyz\", \"json\"]");
+            if (!arr)
+                throw InputError(out->where("formats") +
+                                 ": expected a list such as [\"xyz\", \"json\"]");
             for (std::size_t k = 0; k < arr->size(); ++k) {
                 auto s = (*arr)[k].value_exact<std::string>();
                 if (!s || (*s != "xyz" && *s != "json"))
-                    throw InputError(out->where("formats") + ": each entry must be \"xyz\" or \"json\"");
+                    throw InputError(out->where("formats") +
+                                     ": each entry must be \"xyz\" or \"json\"");
                 c.formats.push_back(*s);
             }
             out->strings("formats", arr->size()); // marks the key as read
         }
         if (auto b = out->integer("histogram_bins")) {
-            if (*b < 1 || *b > 100000) throw InputError(out->where("histogram_bins") + ": must lie in [1, 100000]");
+            if (*b < 1 || *b > 100000)
+                throw InputError(out->where("histogram_bins") + ": must lie in [1, 100000]");
             c.histogram_bins = static_cast<int>(*b);
         }
         c.histogram_start = out->number("histogram_start");
         c.checkpoint_interval = out->number("checkpoint_interval", 0.0);
-        if (c.checkpoint_interval < 0) throw InputError(out->where("checkpoint_interval") + ": must be >= 0");
+        if (c.checkpoint_interval < 0)
+            throw InputError(out->where("checkpoint_interval") + ": must be >= 0");
         c.progress = out->boolean("progress").value_or(true);
         out->finish();
     }

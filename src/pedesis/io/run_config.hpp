@@ -14,11 +14,11 @@ struct SpeciesConfig {
     double radius = 0.5;
     double mass = 1.0;
     // placement (defaults from [initial])
-    std::string positions;                     // random | square | hexagonal | sc | fcc | point
+    std::string positions; // random | square | hexagonal | sc | fcc | point
     std::optional<std::vector<double>> region_lo, region_hi;
-    std::optional<std::vector<double>> point;  // positions = "point": every particle here (count 1)
+    std::optional<std::vector<double>> point; // positions = "point": every particle here (count 1)
     // velocities (defaults from [initial])
-    std::string velocities;                    // zero | equal_speed | uniform | normal | maxwell_boltzmann | given
+    std::string velocities; // zero | equal_speed | uniform | normal | maxwell_boltzmann | given
     double speed = 1.0, sigma = 1.0, temperature = 1.0;
     std::optional<std::vector<double>> velocity; // velocities = "given"
 };

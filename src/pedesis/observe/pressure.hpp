@@ -10,8 +10,9 @@
 namespace pedesis {
 
 template <int D>
-double interval_pressure(const Box<D>& box, const EventCounters<D>& before, const EventCounters<D>& after,
-                         double dt, double mean_temperature, std::size_t mobile) {
+double interval_pressure(const Box<D>& box, const EventCounters<D>& before,
+                         const EventCounters<D>& after, double dt, double mean_temperature,
+                         std::size_t mobile) {
     if (!(dt > 0.0)) return 0.0;
     const double V = box.volume();
     double sum = 0.0;

@@ -56,12 +56,14 @@ void SpeedHistogram::write_csv(std::ostream& out, int dim, const std::vector<std
         const double w = b.v_max / bins_;
         for (std::size_t k = 0; k < b.count.size(); ++k) {
             const double lo = w * static_cast<double>(k), hi = lo + w;
-            const double density = static_cast<double>(b.count[k]) / (static_cast<double>(b.total) * w);
+            const double density =
+                static_cast<double>(b.count[k]) / (static_cast<double>(b.total) * w);
             // bin average of the theoretical density, so coarse bins compare fairly
-            const double theory =
-                (theory::speed_cdf(dim, hi, T, masses[s]) - theory::speed_cdf(dim, lo, T, masses[s])) / w;
-            out << fmt::format("{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", names[s], lo, hi, density,
-                               theory, T);
+            const double theory = (theory::speed_cdf(dim, hi, T, masses[s]) -
+                                   theory::speed_cdf(dim, lo, T, masses[s])) /
+                                  w;
+            out << fmt::format("{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", names[s], lo, hi,
+                               density, theory, T);
         }
     }
 }

@@ -28,8 +28,8 @@ class SpeedHistogram {
     struct Bins {
         double v_max = 0.0;
         std::vector<std::uint64_t> count;
-        std::uint64_t total = 0;      // including speeds beyond v_max
-        double sum_v2_times_m = 0.0;  // for the sampled temperature
+        std::uint64_t total = 0;     // including speeds beyond v_max
+        double sum_v2_times_m = 0.0; // for the sampled temperature
         std::uint64_t mobile = 0;
     };
     int bins_ = 50;

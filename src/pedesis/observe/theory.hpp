@@ -59,7 +59,8 @@ inline double speed_cdf(int dim, double v, double T, double m) {
     const double s = std::sqrt(T / m);
     const double x = v / s;
     if (dim == 2) return 1.0 - std::exp(-0.5 * x * x);
-    return std::erf(x / std::sqrt(2.0)) - std::sqrt(2.0 / std::numbers::pi) * x * std::exp(-0.5 * x * x);
+    return std::erf(x / std::sqrt(2.0)) -
+           std::sqrt(2.0 / std::numbers::pi) * x * std::exp(-0.5 * x * x);
 }
 
 // Kolmogorov-Smirnov distance between a sample (sorted in place) and a CDF.
@@ -69,7 +70,8 @@ template <class Cdf> double ks_distance(std::vector<double>& sample, Cdf&& cdf) 
     double d = 0.0;
     for (std::size_t k = 0; k < sample.size(); ++k) {
         const double F = cdf(sample[k]);
-        d = std::max(d, std::max(F - static_cast<double>(k) / n, static_cast<double>(k + 1) / n - F));
+        d = std::max(d,
+                     std::max(F - static_cast<double>(k) / n, static_cast<double>(k + 1) / n - F));
     }
     return d;
 }

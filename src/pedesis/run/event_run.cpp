@@ -51,7 +51,8 @@ template <int D> EventParams event_params(const RunConfig& c) {
 }
 
 template <int D>
-void save_checkpoint(const std::filesystem::path& path, const EventEngine<D>& e, const RunState<D>& s) {
+void save_checkpoint(const std::filesystem::path& path, const EventEngine<D>& e,
+                     const RunState<D>& s) {
     write_file_atomically(
         path,
         [&](std::ostream& out) {
@@ -69,8 +70,8 @@ void save_checkpoint(const std::filesystem::path& path, const EventEngine<D>& e,
 }
 
 template <int D>
-std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& path, const RunConfig& c,
-                                                RunState<D>& s) {
+std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& path,
+                                                const RunConfig& c, RunState<D>& s) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path.string() + ": cannot open checkpoint");
     try {
@@ -120,7 +121,8 @@ template <int D> class EventRun {
         if (o_.restart) {
             engine_ = load_checkpoint<D>(*o_.restart, c_, state_);
         } else {
-            engine_ = std::make_unique<EventEngine<D>>(build_particles<D>(c_, box), box, event_params<D>(c_));
+            engine_ = std::make_unique<EventEngine<D>>(build_particles<D>(c_, box), box,
+                                                       event_params<D>(c_));
             state_.initial_kinetic = engine_->kinetic_energy();
             state_.last_temperature = measure_kinetics(engine_->lazy_particles()).temperature(D);
             state_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
@@ -132,13 +134,15 @@ template <int D> class EventRun {
         StopLimits limits;
         const double t_end = c_.stop_time.value_or(std::numeric_limits<double>::infinity());
         if (c_.stop_collisions_per_particle)
-            limits.pair_collisions =
-                static_cast<std::uint64_t>(std::ceil(*c_.stop_collisions_per_particle * static_cast<double>(n)));
-        if (c_.stop_energy_fraction) limits.min_kinetic_energy = *c_.stop_energy_fraction * state_.initial_kinetic;
+            limits.pair_collisions = static_cast<std::uint64_t>(
+                std::ceil(*c_.stop_collisions_per_particle * static_cast<double>(n)));
+        if (c_.stop_energy_fraction)
+            limits.min_kinetic_energy = *c_.stop_energy_fraction * state_.initial_kinetic;
 
-        console_ << fmt::format("pedesis: {}D event-driven run, N = {}, box {}, eta = {:.4f}, output in {}\n", D, n,
-                                box_text(), packing_fraction(engine_->lazy_particles(), engine_->box()),
-                                o_.out_dir.string());
+        console_ << fmt::format(
+            "pedesis: {}D event-driven run, N = {}, box {}, eta = {:.4f}, output in {}\n", D, n,
+            box_text(), packing_fraction(engine_->lazy_particles(), engine_->box()),
+            o_.out_dir.string());
         if (!o_.restart) {
             log_row();
             frame();
@@ -147,9 +151,11 @@ template <int D> class EventRun {
         collisions_start_ = engine_->counters().pair_collisions;
         const double li = c_.log_interval;
         double next_log = next_multiple(engine_->time(), li);
-        double next_snap = c_.snapshot_interval > 0 ? next_multiple(engine_->time(), c_.snapshot_interval) : t_end;
-        double next_ckpt =
-            c_.checkpoint_interval > 0 ? next_multiple(engine_->time(), c_.checkpoint_interval) : t_end;
+        double next_snap =
+            c_.snapshot_interval > 0 ? next_multiple(engine_->time(), c_.snapshot_interval) : t_end;
+        double next_ckpt = c_.checkpoint_interval > 0
+                               ? next_multiple(engine_->time(), c_.checkpoint_interval)
+                               : t_end;
         StopReason reason = StopReason::time;
         try {
             while (true) {
@@ -174,7 +180,8 @@ template <int D> class EventRun {
         } catch (const RunError& e) {
             // keep what is good: frames so far, the log, and the last checkpoint
             close_streams();
-            throw RunError(std::string(e.what()) + " (the log, the frames and the last checkpoint written so far are in " +
+            throw RunError(std::string(e.what()) +
+                           " (the log, the frames and the last checkpoint written so far are in " +
                            o_.out_dir.string() + ")");
         }
         finish(reason);
@@ -203,20 +210,27 @@ template <int D> class EventRun {
     void prepare_directory() {
         std::error_code ec;
         std::filesystem::create_directories(o_.out_dir / "snapshots", ec);
-        if (ec) throw InputError(o_.out_dir.string() + ": cannot create output directory: " + ec.message());
+        if (ec)
+            throw InputError(o_.out_dir.string() +
+                             ": cannot create output directory: " + ec.message());
         // results of an earlier run in this directory must not pass for this run's
-        for (const char* stale : {"summary.json", "speed_histogram.csv"}) std::filesystem::remove(o_.out_dir / stale, ec);
+        for (const char* stale : {"summary.json", "speed_histogram.csv"})
+            std::filesystem::remove(o_.out_dir / stale, ec);
         std::ifstream cfg(o_.config_path);
         std::stringstream text;
         text << cfg.rdbuf();
-        write_file_atomically(o_.out_dir / "config.toml", [&](std::ostream& out) { out << text.str(); });
+        write_file_atomically(o_.out_dir / "config.toml",
+                              [&](std::ostream& out) { out << text.str(); });
         log_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "log.csv");
-        std::string header = "time,collisions,collisions_per_particle,wall_collisions,kinetic_energy,"
-                             "energy_fraction,temperature";
-        for (const auto& s : c_.species) header += ",temperature_" + s.name + ",kinetic_energy_" + s.name;
+        std::string header =
+            "time,collisions,collisions_per_particle,wall_collisions,kinetic_energy,"
+            "energy_fraction,temperature";
+        for (const auto& s : c_.species)
+            header += ",temperature_" + s.name + ",kinetic_energy_" + s.name;
         header += ",pressure,pressure_ideal,compressibility,mean_free_time,list_rebuilds\n";
         log_->append(header);
-        if (wants("xyz")) trajectory_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "trajectory.xyz");
+        if (wants("xyz"))
+            trajectory_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "trajectory.xyz");
     }
 
     bool wants(const std::string& f) const {
@@ -230,22 +244,27 @@ template <int D> class EventRun {
         const double T = k.temperature(D);
         const double dt = t - state_.last_log_time;
         const double meanT = 0.5 * (T + state_.last_temperature);
-        const double P = interval_pressure(e.box(), state_.last_counters, e.counters(), dt, meanT, k.total_mobile);
+        const double P = interval_pressure(e.box(), state_.last_counters, e.counters(), dt, meanT,
+                                           k.total_mobile);
         state_.integral_T_dt += meanT * dt;
         const double n = static_cast<double>(e.size());
         const auto C = e.counters().pair_collisions;
         const double P_ideal = static_cast<double>(k.total_mobile) * meanT / e.box().volume();
-        std::string row = fmt::format("{:.10g},{},{:.6g},{},{:.10g},{:.8g},{:.8g}", t, C, static_cast<double>(C) / n,
-                                      e.counters().wall_collisions, k.total_kinetic,
-                                      state_.initial_kinetic > 0 ? k.total_kinetic / state_.initial_kinetic : 0.0, T);
+        std::string row = fmt::format(
+            "{:.10g},{},{:.6g},{},{:.10g},{:.8g},{:.8g}", t, C, static_cast<double>(C) / n,
+            e.counters().wall_collisions, k.total_kinetic,
+            state_.initial_kinetic > 0 ? k.total_kinetic / state_.initial_kinetic : 0.0, T);
         for (std::size_t s = 0; s < c_.species.size(); ++s)
             row += fmt::format(",{:.8g},{:.10g}", k.temperature(D, s), k.kinetic[s]);
-        const double mft = C ? static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C))
-                             : std::numeric_limits<double>::infinity();
-        row += fmt::format(",{:.8g},{:.8g},{:.8g},{:.8g},{}\n", dt > 0 ? P : 0.0, P_ideal,
-                           dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft, e.counters().list_rebuilds);
+        const double mft =
+            C ? static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C))
+              : std::numeric_limits<double>::infinity();
+        row +=
+            fmt::format(",{:.8g},{:.8g},{:.8g},{:.8g},{}\n", dt > 0 ? P : 0.0, P_ideal,
+                        dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft, e.counters().list_rebuilds);
         log_->append(row);
-        if (c_.histogram_start && t >= *c_.histogram_start) state_.histogram.add(e.lazy_particles());
+        if (c_.histogram_start && t >= *c_.histogram_start)
+            state_.histogram.add(e.lazy_particles());
         state_.last_log_time = t;
         state_.last_temperature = T;
         state_.last_counters = e.counters();
@@ -258,10 +277,16 @@ template <int D> class EventRun {
         if (last_progress_ && now - *last_progress_ < std::chrono::seconds(1)) return;
         last_progress_ = now;
         const double wall = std::chrono::duration<double>(now - wall_start_).count();
-        const double rate = wall > 0 ? static_cast<double>(engine_->counters().pair_collisions - collisions_start_) / wall : 0.0;
-        console_ << fmt::format("  t = {:<10.4g} collisions/particle = {:<9.4g} T = {:<10.5g} P = {:<10s} {:.3g} collisions/s\n",
+        const double rate =
+            wall > 0
+                ? static_cast<double>(engine_->counters().pair_collisions - collisions_start_) /
+                      wall
+                : 0.0;
+        console_ << fmt::format("  t = {:<10.4g} collisions/particle = {:<9.4g} T = {:<10.5g} P = "
+                                "{:<10s} {:.3g} collisions/s\n",
                                 engine_->time(),
-                                static_cast<double>(engine_->counters().pair_collisions) / static_cast<double>(engine_->size()),
+                                static_cast<double>(engine_->counters().pair_collisions) /
+                                    static_cast<double>(engine_->size()),
                                 T, has_pressure ? fmt::format("{:.5g}", P) : "-", rate);
     }
 
@@ -270,7 +295,8 @@ template <int D> class EventRun {
         if (trajectory_) trajectory_->append(xyz_frame(s, engine_->box(), engine_->time()));
         if (wants("json")) {
             const auto j = to_tutorial_json(s, engine_->box(), engine_->time());
-            write_file_atomically(o_.out_dir / "snapshots" / fmt::format("frame_{:06d}.json", state_.frames),
+            write_file_atomically(o_.out_dir / "snapshots" /
+                                      fmt::format("frame_{:06d}.json", state_.frames),
                                   [&](std::ostream& out) { out << j.dump() << "\n"; });
         }
         ++state_.frames;
@@ -285,7 +311,8 @@ template <int D> class EventRun {
         const auto& e = *engine_;
         frame();
         save_checkpoint(o_.out_dir / "checkpoint.bin", e, state_);
-        // the final-state sample is not in the checkpoint, so a continued run does not count it twice
+        // the final-state sample is not in the checkpoint, so a continued run does not count it
+        // twice
         SpeedHistogram histogram = state_.histogram;
         if (!c_.histogram_start) histogram.add(e.lazy_particles());
         std::vector<std::string> names;
@@ -294,8 +321,9 @@ template <int D> class EventRun {
             names.push_back(s.name);
             masses.push_back(s.mass);
         }
-        write_file_atomically(o_.out_dir / "speed_histogram.csv",
-                              [&](std::ostream& out) { histogram.write_csv(out, D, names, masses); });
+        write_file_atomically(o_.out_dir / "speed_histogram.csv", [&](std::ostream& out) {
+            histogram.write_csv(out, D, names, masses);
+        });
         close_streams();
         write_summary(reason);
     }
@@ -306,7 +334,8 @@ template <int D> class EventRun {
         const double t = e.time();
         const double V = e.box().volume();
         const double T_avg = t > 0 ? state_.integral_T_dt / t : k.temperature(D);
-        const double P = interval_pressure(e.box(), EventCounters<D>{}, e.counters(), t, T_avg, k.total_mobile);
+        const double P =
+            interval_pressure(e.box(), EventCounters<D>{}, e.counters(), t, T_avg, k.total_mobile);
         const double P_ideal = static_cast<double>(k.total_mobile) * T_avg / V;
         const double eta = packing_fraction(e.lazy_particles(), e.box());
         const double Z_eos = theory::compressibility_factor(D, eta);
@@ -327,7 +356,8 @@ template <int D> class EventRun {
         j["packing_fraction"] = eta;
         j["temperature"] = k.temperature(D);
         j["time_averaged_temperature"] = T_avg;
-        j["energy_fraction"] = state_.initial_kinetic > 0 ? k.total_kinetic / state_.initial_kinetic : 0.0;
+        j["energy_fraction"] =
+            state_.initial_kinetic > 0 ? k.total_kinetic / state_.initial_kinetic : 0.0;
         for (std::size_t s = 0; s < c_.species.size(); ++s)
             j["species"][c_.species[s].name] = {{"temperature", k.temperature(D, s)},
                                                 {"kinetic_energy", k.kinetic[s]}};
@@ -336,26 +366,34 @@ template <int D> class EventRun {
         j["compressibility"] = P_ideal > 0 ? P / P_ideal : 0.0;
         j["compressibility_equation_of_state"] = Z_eos;
         if (C)
-            j["mean_free_time"] = static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C));
+            j["mean_free_time"] =
+                static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C));
         else
             j["mean_free_time"] = nullptr; // infinite: no collision yet
-        write_file_atomically(o_.out_dir / "summary.json", [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+        write_file_atomically(o_.out_dir / "summary.json",
+                              [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 
-        console_ << fmt::format("pedesis: stopped by {} at t = {:.6g} after {} collisions ({:.3g} per particle)\n", why,
-                                t, C, cpp);
-        console_ << fmt::format("  temperature        {:.6g} (time average {:.6g}); energy remaining {:.4g} of initial\n",
-                                k.temperature(D), T_avg, j["energy_fraction"].template get<double>());
+        console_ << fmt::format(
+            "pedesis: stopped by {} at t = {:.6g} after {} collisions ({:.3g} per particle)\n", why,
+            t, C, cpp);
+        console_ << fmt::format("  temperature        {:.6g} (time average {:.6g}); energy "
+                                "remaining {:.4g} of initial\n",
+                                k.temperature(D), T_avg,
+                                j["energy_fraction"].template get<double>());
         if (c_.species.size() > 1)
             for (std::size_t s = 0; s < c_.species.size(); ++s)
-                console_ << fmt::format("  temperature of {:<4s} {:.6g}\n", c_.species[s].name, k.temperature(D, s));
-        console_ << fmt::format("  pressure           {:.6g} ({})\n", P,
-                                pressure_method(e.box()));
-        console_ << fmt::format("  ideal gas N T / V  {:.6g}  ->  Z = P V / (N T) = {:.4f}\n", P_ideal,
-                                P_ideal > 0 ? P / P_ideal : 0.0);
-        console_ << fmt::format("  {} at eta = {:.4f}: Z = {:.4f}{}\n",
-                                D == 2 ? "hard-disk EOS (Henderson)" : "hard-sphere EOS (Carnahan-Starling)", eta,
-                                Z_eos, e.box().any_wall() ? " (walls shift this by O(sigma/L))" : "");
-        if (C) console_ << fmt::format("  mean free time     {:.6g}\n", j["mean_free_time"].template get<double>());
+                console_ << fmt::format("  temperature of {:<4s} {:.6g}\n", c_.species[s].name,
+                                        k.temperature(D, s));
+        console_ << fmt::format("  pressure           {:.6g} ({})\n", P, pressure_method(e.box()));
+        console_ << fmt::format("  ideal gas N T / V  {:.6g}  ->  Z = P V / (N T) = {:.4f}\n",
+                                P_ideal, P_ideal > 0 ? P / P_ideal : 0.0);
+        console_ << fmt::format(
+            "  {} at eta = {:.4f}: Z = {:.4f}{}\n",
+            D == 2 ? "hard-disk EOS (Henderson)" : "hard-sphere EOS (Carnahan-Starling)", eta,
+            Z_eos, e.box().any_wall() ? " (walls shift this by O(sigma/L))" : "");
+        if (C)
+            console_ << fmt::format("  mean free time     {:.6g}\n",
+                                    j["mean_free_time"].template get<double>());
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
@@ -374,7 +412,8 @@ template <int D> class EventRun {
 
 } // namespace
 
-void run_event_simulation(const RunConfig& config, const RunOptions& options, std::ostream& console) {
+void run_event_simulation(const RunConfig& config, const RunOptions& options,
+                          std::ostream& console) {
     if (config.dimension == 2)
         EventRun<2>(config, options, console).execute();
     else

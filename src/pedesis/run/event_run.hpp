@@ -17,6 +17,7 @@ struct RunOptions {
     std::filesystem::path config_path;
 };
 
-void run_event_simulation(const RunConfig& config, const RunOptions& options, std::ostream& console);
+void run_event_simulation(const RunConfig& config, const RunOptions& options,
+                          std::ostream& console);
 
 } // namespace pedesis

@@ -31,7 +31,8 @@ template <int D> struct CentreRegion {
     std::array<bool, D> closed{};
 };
 
-template <int D> CentreRegion<D> centre_region(const RunConfig& c, const Box<D>& box, std::size_t s) {
+template <int D>
+CentreRegion<D> centre_region(const RunConfig& c, const Box<D>& box, std::size_t s) {
     const SpeciesConfig& sp = c.species[s];
     CentreRegion<D> reg;
     for (int a = 0; a < D; ++a) {
@@ -48,7 +49,8 @@ template <int D> CentreRegion<D> centre_region(const RunConfig& c, const Box<D>&
             hi -= sp.radius;
         }
         if (!(lo <= hi))
-            throw InputError(species_label(c, s) + ": region is narrower than one particle along axis " +
+            throw InputError(species_label(c, s) +
+                             ": region is narrower than one particle along axis " +
                              std::to_string(a));
         if (lo == hi) hi = std::nextafter(hi, hi + 1.0);
         reg.lo[a] = lo;
@@ -83,7 +85,8 @@ void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::si
     try {
         kind = parse_lattice(sp.positions, D);
     } catch (const InputError& e) {
-        throw InputError(species_label(c, s) + ": positions: " + e.what() + ", random or point (or [initial] file)");
+        throw InputError(species_label(c, s) + ": positions: " + e.what() +
+                         ", random or point (or [initial] file)");
     }
     for (const auto& r : lattice_sites<D>(kind, reg.lo, reg.hi, reg.closed, count)) {
         pos.push_back(r);
@@ -93,11 +96,13 @@ void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::si
 
 template <int D>
 void draw_species_velocities(const RunConfig& c, ParticleStore<D>& p, std::size_t s,
-                             const std::vector<std::size_t>& members, const std::vector<bool>& from_file) {
+                             const std::vector<std::size_t>& members,
+                             const std::vector<bool>& from_file) {
     const SpeciesConfig& sp = c.species[s];
     VelocitySpec spec;
     try {
-        spec.kind = sp.velocities == "given" ? VelocityKind::given : parse_velocity_kind(sp.velocities);
+        spec.kind =
+            sp.velocities == "given" ? VelocityKind::given : parse_velocity_kind(sp.velocities);
     } catch (const InputError& e) {
         throw InputError(species_label(c, s) + ": velocities: " + e.what());
     }
@@ -113,14 +118,16 @@ void draw_species_velocities(const RunConfig& c, ParticleStore<D>& p, std::size_
             continue;
         }
         // equal speeds with zero momentum: antithetic pairs keep every speed equal
-        if (spec.kind == VelocityKind::equal_speed && c.zero_momentum && k % 2 == 1 && !from_file[members[k - 1]])
+        if (spec.kind == VelocityKind::equal_speed && c.zero_momentum && k % 2 == 1 &&
+            !from_file[members[k - 1]])
             p.velocity[i] = -p.velocity[members[k - 1]];
         else
             p.velocity[i] = draw_velocity<D>(spec, sp.mass, c.seed, p.tag[i]);
         drawn.push_back(i);
     }
     if (std::isinf(sp.mass) || drawn.empty()) return;
-    const bool random_kind = spec.kind == VelocityKind::uniform || spec.kind == VelocityKind::normal ||
+    const bool random_kind = spec.kind == VelocityKind::uniform ||
+                             spec.kind == VelocityKind::normal ||
                              spec.kind == VelocityKind::maxwell_boltzmann;
     if (c.zero_momentum && random_kind && drawn.size() > 1) remove_drift(p, drawn);
     if (spec.kind == VelocityKind::maxwell_boltzmann && drawn.size() > 1)
@@ -142,8 +149,9 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
     for (const auto& s : c.species)
         for (int a = 0; a < D; ++a)
             if (box.length(a) < 2.0 * s.radius)
-                throw InputError(c.file + ": box length " + std::to_string(box.length(a)) + " along axis " +
-                                 std::to_string(a) + " is smaller than one particle of species '" + s.name +
+                throw InputError(c.file + ": box length " + std::to_string(box.length(a)) +
+                                 " along axis " + std::to_string(a) +
+                                 " is smaller than one particle of species '" + s.name +
                                  "' (diameter " + std::to_string(2.0 * s.radius) + ")");
 
     std::vector<Vec<D>> pos;
@@ -161,22 +169,27 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
         // tags follow the file's ids in increasing order
         std::vector<std::size_t> order(f.particles.size());
         std::iota(order.begin(), order.end(), std::size_t{0});
-        std::sort(order.begin(), order.end(),
-                  [&](std::size_t a, std::size_t b) { return f.particles[a].id < f.particles[b].id; });
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            return f.particles[a].id < f.particles[b].id;
+        });
         std::vector<std::size_t> per_type(c.species.size(), 0);
         for (std::size_t k : order) {
             const auto& fp = f.particles[k];
             const std::string who = *c.initial_file + ": particle " + std::to_string(fp.id);
             if (fp.type < 0 || static_cast<std::size_t>(fp.type) >= c.species.size())
-                throw InputError(who + ": type " + std::to_string(fp.type) + " has no [[species]] entry in " + c.file);
+                throw InputError(who + ": type " + std::to_string(fp.type) +
+                                 " has no [[species]] entry in " + c.file);
             const auto s = static_cast<std::size_t>(fp.type);
-            if (fp.radius && std::abs(*fp.radius - c.species[s].radius) > 1e-12 * c.species[s].radius)
-                throw InputError(who + ": radius " + std::to_string(*fp.radius) + " differs from species '" +
-                                 c.species[s].name + "' radius " + std::to_string(c.species[s].radius));
+            if (fp.radius &&
+                std::abs(*fp.radius - c.species[s].radius) > 1e-12 * c.species[s].radius)
+                throw InputError(who + ": radius " + std::to_string(*fp.radius) +
+                                 " differs from species '" + c.species[s].name + "' radius " +
+                                 std::to_string(c.species[s].radius));
             if (fp.mass && !(*fp.mass == c.species[s].mass) &&
                 !(std::abs(*fp.mass - c.species[s].mass) <= 1e-12 * c.species[s].mass))
-                throw InputError(who + ": mass " + std::to_string(*fp.mass) + " differs from species '" +
-                                 c.species[s].name + "' mass " + std::to_string(c.species[s].mass));
+                throw InputError(who + ": mass " + std::to_string(*fp.mass) +
+                                 " differs from species '" + c.species[s].name + "' mass " +
+                                 std::to_string(c.species[s].mass));
             pos.push_back(fp.r);
             radii.push_back(c.species[s].radius);
             species.push_back(static_cast<std::uint16_t>(s));
@@ -185,12 +198,14 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
         }
         for (std::size_t s = 0; s < c.species.size(); ++s)
             if (c.species[s].count && *c.species[s].count != per_type[s])
-                throw InputError(species_label(c, s) + ": count " + std::to_string(*c.species[s].count) +
-                                 " but " + *c.initial_file + " holds " + std::to_string(per_type[s]));
+                throw InputError(species_label(c, s) + ": count " +
+                                 std::to_string(*c.species[s].count) + " but " + *c.initial_file +
+                                 " holds " + std::to_string(per_type[s]));
     } else {
         for (std::size_t s = 0; s < c.species.size(); ++s) {
             if (!c.species[s].count)
-                throw InputError(species_label(c, s) + ": count is required (or give [initial] file)");
+                throw InputError(species_label(c, s) +
+                                 ": count is required (or give [initial] file)");
             const std::size_t n = *c.species[s].count;
             place_species(c, box, s, n, static_cast<std::uint32_t>(pos.size()), pos, radii);
             species.insert(species.end(), n, static_cast<std::uint16_t>(s));
@@ -212,7 +227,8 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
         }
         members[species[i]].push_back(i);
     }
-    for (std::size_t s = 0; s < c.species.size(); ++s) draw_species_velocities(c, p, s, members[s], from_file);
+    for (std::size_t s = 0; s < c.species.size(); ++s)
+        draw_species_velocities(c, p, s, members[s], from_file);
     return p;
 }
 

@@ -112,8 +112,8 @@ std::vector<Vec<D>> lattice_sites(LatticeKind kind, const Vec<D>& lo, const Vec<
 }
 
 template std::vector<Vec<2>> lattice_sites<2>(LatticeKind, const Vec<2>&, const Vec<2>&,
-                                           const std::array<bool, 2>&, std::size_t);
+                                              const std::array<bool, 2>&, std::size_t);
 template std::vector<Vec<3>> lattice_sites<3>(LatticeKind, const Vec<3>&, const Vec<3>&,
-                                           const std::array<bool, 3>&, std::size_t);
+                                              const std::array<bool, 3>&, std::size_t);
 
 } // namespace pedesis

@@ -17,7 +17,8 @@ void place_randomly(std::vector<Vec<D>>& pos, std::vector<double>& radii, const 
     CellList<D> cells(box, reach);
     const std::size_t total = pos.size() + req.count;
     cells.clear(total);
-    for (std::size_t j = 0; j < pos.size(); ++j) cells.insert(static_cast<std::uint32_t>(j), pos[j]);
+    for (std::size_t j = 0; j < pos.size(); ++j)
+        cells.insert(static_cast<std::uint32_t>(j), pos[j]);
 
     constexpr int max_attempts = 20000;
     for (std::size_t k = 0; k < req.count; ++k) {
@@ -40,9 +41,9 @@ void place_randomly(std::vector<Vec<D>>& pos, std::vector<double>& radii, const 
             placed = true;
         }
         if (!placed)
-            throw InputError(req.what + ": could not place particle " + std::to_string(k + 1) + " of " +
-                             std::to_string(req.count) + " at random without overlap after " +
-                             std::to_string(max_attempts) +
+            throw InputError(req.what + ": could not place particle " + std::to_string(k + 1) +
+                             " of " + std::to_string(req.count) +
+                             " at random without overlap after " + std::to_string(max_attempts) +
                              " attempts; the region is too crowded for random placement "
                              "(use a lattice, or a larger box)");
     }

@@ -11,10 +11,10 @@ namespace pedesis {
 template <int D> struct PlacementRequest {
     std::size_t count = 0;
     double radius = 0.5;
-    Vec<D> lo{}, hi{};          // region for the centres
-    double min_distance = 0.0;  // centres at least max(r_i + r_j, min_distance) apart
+    Vec<D> lo{}, hi{};           // region for the centres
+    double min_distance = 0.0;   // centres at least max(r_i + r_j, min_distance) apart
     std::uint32_t first_tag = 0; // tags first_tag, first_tag + 1, ... key the random streams
-    std::string what;           // for error messages, e.g. "species 'A'"
+    std::string what;            // for error messages, e.g. "species 'A'"
 };
 
 // Appends the new centres to `pos` (and their radii to `radii`), avoiding all

@@ -13,8 +13,9 @@ VelocityKind parse_velocity_kind(const std::string& name) {
     if (name == "uniform") return VelocityKind::uniform;
     if (name == "normal") return VelocityKind::normal;
     if (name == "maxwell_boltzmann") return VelocityKind::maxwell_boltzmann;
-    throw InputError("unknown velocity distribution '" + name +
-                     "' (use zero, equal_speed, uniform, normal, maxwell_boltzmann, or give velocity = [..])");
+    throw InputError(
+        "unknown velocity distribution '" + name +
+        "' (use zero, equal_speed, uniform, normal, maxwell_boltzmann, or give velocity = [..])");
 }
 
 template <int D>

@@ -20,12 +20,14 @@ struct VelocitySpec {
 
 VelocityKind parse_velocity_kind(const std::string& name);
 
-template <int D> Vec<D> draw_velocity(const VelocitySpec& spec, double mass, std::uint64_t seed, std::uint32_t tag);
+template <int D>
+Vec<D> draw_velocity(const VelocitySpec& spec, double mass, std::uint64_t seed, std::uint32_t tag);
 
 // Removes the centre-of-mass velocity of the mobile particles among `which`.
 template <int D> void remove_drift(ParticleStore<D>& p, const std::vector<std::size_t>& which);
 
 // Scales the velocities of `which` so that their kinetic temperature is exactly T.
-template <int D> void rescale_temperature(ParticleStore<D>& p, const std::vector<std::size_t>& which, double T);
+template <int D>
+void rescale_temperature(ParticleStore<D>& p, const std::vector<std::size_t>& which, double T);
 
 } // namespace pedesis

@@ -112,7 +112,8 @@ template <int D> class CellList {
     // Calls f(j) for every particle in the cells around position r.
     template <class F> void for_each_near(const Vec<D>& r, F&& f) const {
         for_each_neighbor_cell(cell_index(r), [&](std::int32_t c) {
-            for (std::int32_t j = head_[c]; j != none; j = next_[j]) f(static_cast<std::uint32_t>(j));
+            for (std::int32_t j = head_[c]; j != none; j = next_[j])
+                f(static_cast<std::uint32_t>(j));
         });
     }
 
