@@ -38,6 +38,16 @@ template <int D> struct RunState {
     EventCounters<D> last_counters{};
     std::uint64_t frames = 0;
     SpeedHistogram histogram;
+
+    // The plain fields in checkpoint order; one list serves saving and loading.
+    template <class Self, class F> static void for_each_scalar(Self& s, F&& f) {
+        f(s.initial_kinetic);
+        f(s.integral_T_dt);
+        f(s.last_log_time);
+        f(s.last_temperature);
+        f(s.last_counters);
+        f(s.frames);
+    }
 };
 
 template <int D> EventParams event_params(const RunConfig& c) {
@@ -58,12 +68,7 @@ void save_checkpoint(const std::filesystem::path& path, const EventEngine<D>& e,
         [&](std::ostream& out) {
             binary::put(out, run_checkpoint_magic);
             e.save(out);
-            binary::put(out, s.initial_kinetic);
-            binary::put(out, s.integral_T_dt);
-            binary::put(out, s.last_log_time);
-            binary::put(out, s.last_temperature);
-            binary::put(out, s.last_counters);
-            binary::put(out, s.frames);
+            RunState<D>::for_each_scalar(s, [&](const auto& v) { binary::put(out, v); });
             s.histogram.save(out);
         },
         true);
@@ -79,12 +84,7 @@ std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& pat
         binary::get(in, magic);
         if (magic != run_checkpoint_magic) throw InputError("not a pedesis run checkpoint");
         auto e = std::make_unique<EventEngine<D>>(EventEngine<D>::load(in, event_params<D>(c)));
-        binary::get(in, s.initial_kinetic);
-        binary::get(in, s.integral_T_dt);
-        binary::get(in, s.last_log_time);
-        binary::get(in, s.last_temperature);
-        binary::get(in, s.last_counters);
-        binary::get(in, s.frames);
+        RunState<D>::for_each_scalar(s, [&](auto& v) { binary::get(in, v); });
         s.histogram.load(in);
         const auto& table = e->lazy_particles().species_table;
         if (table.size() != c.species.size()) throw InputError("species do not match " + c.file);
