@@ -68,6 +68,32 @@ TEST_F(CliRun, OutputsParse) {
     EXPECT_EQ(std::count(xyz.begin(), xyz.end(), '\n'), 2 * (2 + 300));
 }
 
+// A dense, strongly inelastic gas without the TC model collapses: the run stops with
+// exit code 3 and a message, and keeps the frames and log written before the collapse
+// (committed under their final names, not left as .part files). With tc it runs on.
+TEST_F(CliRun, CollapseStopsCleanlyAndKeepsGoodOutput) {
+    const std::string base =
+        "dimension = 2\nseed = 4\n[box]\nlength = 20.0\nboundary = \"wall\"\n"
+        "[[species]]\ncount = 200\nradius = 0.5\npositions = \"square\"\n"
+        "[run]\ntime = 5.0\n[output]\nlog_interval = 0.05\nsnapshot_interval = 0.05\n"
+        "progress = false\n[event]\nrestitution = 0.1\nwall_restitution = 0.1\n";
+    write("collapse.toml", base);
+    const CliResult r = run_pedesis("run collapse.toml --out out", dir);
+    ASSERT_EQ(r.exit_code, 3) << r.output;
+    EXPECT_NE(r.output.find("inelastic collapse"), std::string::npos) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "trajectory.xyz"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "log.csv"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "trajectory.xyz.part"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
+    const std::string xyz = read("out/trajectory.xyz");
+    EXPECT_GE(std::count(xyz.begin(), xyz.end(), '\n'), 2 * (2 + 200)); // whole frames only
+    EXPECT_EQ(std::count(xyz.begin(), xyz.end(), '\n') % (2 + 200), 0);
+
+    write("tc.toml", base + "tc = 1e-3\n");
+    const CliResult ok = run_pedesis("run tc.toml --out tc", dir);
+    EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
 TEST_F(CliRun, BenchPrintsItsFigures) {
     const CliResult r =
         run_pedesis("bench event --dim 3 --n 500 --eta 0.3 --time 0.5 --warmup 0.1", dir);
