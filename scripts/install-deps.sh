@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config
   googletest libgtest-dev
   nlohmann-json3-dev libtomlplusplus-dev libcli11-dev libfmt-dev librandom123-dev
+  libomp-dev python3-numpy python3-gsd
 )
 
 missing=()

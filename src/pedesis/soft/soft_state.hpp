@@ -1,0 +1,45 @@
+#pragma once
+// State of a soft / active particle system (the `brownian`, `langevin` and `nve`
+// dynamics): the shared particle store plus what forces, torques and integrators need.
+// Positions are kept wrapped into the box; `image` counts the periodic boxes crossed so
+// that unwrapped positions (for the MSD) are r + image * L.
+#include "pedesis/core/box.hpp"
+#include "pedesis/core/particles.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace pedesis {
+
+// A torque is a pseudo-scalar in 2D (about z) and a vector in 3D.
+template <int D> using TorqueVec = Vec<D == 2 ? 1 : 3>;
+
+template <int D> struct SoftState {
+    Box<D> box;
+    ParticleStore<D> p;                         // position, velocity, tag, species
+    std::vector<Vec<D>> director;               // unit polarity n_i
+    std::vector<Vec<D>> force;                  // total force of the current step
+    std::vector<TorqueVec<D>> torque;           // total torque of the current step
+    std::vector<std::array<std::int32_t, D>> image;
+    std::uint64_t step = 0;
+    double time = 0.0;
+
+    std::size_t size() const { return p.size(); }
+
+    void resize(std::size_t n) {
+        p.resize(n);
+        director.resize(n);
+        force.resize(n);
+        torque.resize(n);
+        image.resize(n);
+    }
+
+    Vec<D> unwrapped(std::size_t i) const {
+        Vec<D> r = p.position[i];
+        for (int a = 0; a < D; ++a) r[a] += image[i][a] * box.length(a);
+        return r;
+    }
+};
+
+} // namespace pedesis
