@@ -17,10 +17,10 @@ template <int D> using TorqueVec = Vec<D == 2 ? 1 : 3>;
 
 template <int D> struct SoftState {
     Box<D> box;
-    ParticleStore<D> p;                         // position, velocity, tag, species
-    std::vector<Vec<D>> director;               // unit polarity n_i
-    std::vector<Vec<D>> force;                  // total force of the current step
-    std::vector<TorqueVec<D>> torque;           // total torque of the current step
+    ParticleStore<D> p;               // position, velocity, tag, species
+    std::vector<Vec<D>> director;     // unit polarity n_i
+    std::vector<Vec<D>> force;        // total force of the current step
+    std::vector<TorqueVec<D>> torque; // total torque of the current step
     std::vector<std::array<std::int32_t, D>> image;
     std::uint64_t step = 0;
     double time = 0.0;

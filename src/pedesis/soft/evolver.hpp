@@ -1,0 +1,55 @@
+#pragma once
+// The evolver of the ABP tutorial: owns the registered forces, torques and integrators
+// and advances the state one step at a time:
+//   neighbour-list check, integrator pre-steps, forces and torques (reset, then every
+//   term), integrator post-steps, periodic wrap with image counters.
+#include "pedesis/soft/plugins.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace pedesis {
+
+template <int D> class Evolver {
+  public:
+    // The list cutoff follows the largest range of the registered terms unless r_cut is
+    // given (> 0); skin is the tutorial's "pad".
+    Evolver(SoftState<D>& state, double skin, double r_cut = 0.0);
+
+    void add_force(std::unique_ptr<ForceTerm<D>> f);
+    void add_torque(std::unique_ptr<TorqueTerm<D>> t);
+    void add_integrator(std::unique_ptr<Integrator<D>> i);
+
+    void evolve(double dt);
+    void run(std::uint64_t steps, double dt) {
+        for (std::uint64_t k = 0; k < steps; ++k) evolve(dt);
+    }
+
+    // Energy and virial of the conservative pair forces at the current positions.
+    PairTotals pair_totals();
+    const NeighborList<D>& neighbor_list();
+    std::uint64_t list_builds() const { return builds_; }
+    double list_cutoff() const { return r_list_cut_; }
+    double skin() const { return skin_; }
+    const std::vector<std::unique_ptr<ForceTerm<D>>>& forces() const { return forces_; }
+    const std::vector<std::unique_ptr<Integrator<D>>>& integrators() const { return integrators_; }
+
+  private:
+    void ensure_list();
+    void wrap_all();
+
+    SoftState<D>& s_;
+    double skin_;
+    double r_cut_request_;
+    double r_list_cut_ = 0.0;
+    std::unique_ptr<NeighborList<D>> nl_;
+    std::uint64_t builds_ = 0;
+    std::vector<std::unique_ptr<ForceTerm<D>>> forces_;
+    std::vector<std::unique_ptr<TorqueTerm<D>>> torques_;
+    std::vector<std::unique_ptr<Integrator<D>>> integrators_;
+};
+
+extern template class Evolver<2>;
+extern template class Evolver<3>;
+
+} // namespace pedesis

@@ -1,0 +1,49 @@
+#pragma once
+// The plug-in interfaces of the soft/active engine (the design of the ABP tutorial:
+// forces, torques and integrators registered with an evolver). A virtual call happens
+// once per term per step, never per pair or per particle.
+#include "pedesis/soft/soft_state.hpp"
+#include "pedesis/spatial/neighbor_list.hpp"
+
+#include <string>
+
+namespace pedesis {
+
+// Totals that only logging needs: computed on request, serially, so that they are
+// reproducible and cost nothing on ordinary steps.
+struct PairTotals {
+    double energy = 0.0; // potential energy of the conservative forces
+    double virial = 0.0; // sum over pairs of r_ij . F_ij
+};
+
+template <int D> class ForceTerm {
+  public:
+    virtual ~ForceTerm() = default;
+    virtual std::string name() const = 0;
+    // Largest pair distance the term needs (0 for one-body terms).
+    virtual double range(const SoftState<D>&) const { return 0.0; }
+    virtual void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const = 0;
+    virtual void add_totals(const SoftState<D>&, const NeighborList<D>&, PairTotals&) const {}
+};
+
+template <int D> class TorqueTerm {
+  public:
+    virtual ~TorqueTerm() = default;
+    virtual std::string name() const = 0;
+    virtual double range(const SoftState<D>&) const { return 0.0; }
+    virtual void add_torques(SoftState<D>& s, const NeighborList<D>& nl) const = 0;
+};
+
+// Integrators act before (pre-step) and after (post-step) forces are computed, as in the
+// tutorial: overdamped schemes only need the post-step, velocity Verlet needs both.
+// `max_move` is the largest displacement per step that is not a blow-up (the skin); an
+// integrator that moves a particle further (or to NaN) throws RunError naming it.
+template <int D> class Integrator {
+  public:
+    virtual ~Integrator() = default;
+    virtual std::string name() const = 0;
+    virtual void prestep(SoftState<D>&, double /*dt*/, double /*max_move*/) {}
+    virtual void poststep(SoftState<D>&, double /*dt*/, double /*max_move*/) {}
+};
+
+} // namespace pedesis

@@ -1,0 +1,206 @@
+#include "pedesis/spatial/neighbor_list.hpp"
+
+#include "pedesis/core/error.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace pedesis {
+
+namespace {
+
+// Below this many particles a parallel region costs more than the loop it splits.
+constexpr std::int64_t parallel_min = 4096;
+
+// The cell list links particles with int32 (-1 = none).
+constexpr std::size_t max_particles = std::numeric_limits<std::int32_t>::max();
+
+// Headroom on the first allocation and on growth: the pair count fluctuates by a few
+// per cent between builds, and a reallocation mid-run would briefly double the memory.
+constexpr std::size_t grow(std::size_t needed) {
+    return needed + needed / 8 + 64;
+}
+
+} // namespace
+
+template <int D>
+NeighborList<D>::NeighborList(const Box<D>& box, double r_cut, double skin)
+    : box_(box), r_cut_(r_cut), skin_(skin), r_list_(r_cut + skin) {
+    if (!(std::isfinite(r_cut) && r_cut > 0.0))
+        throw InputError(
+            fmt::format("neighbour list: r_cut must be a positive finite number (got {})", r_cut));
+    if (!(std::isfinite(skin) && skin >= 0.0))
+        throw InputError(
+            fmt::format("neighbour list: skin must be a finite number >= 0 (got {})", skin));
+    for (int a = 0; a < D; ++a)
+        if (box.periodic(a) && box.length(a) < 2.0 * r_list_)
+            throw InputError(fmt::format(
+                "neighbour list: box too small for the cutoff: periodic axis {} has length {} "
+                "but the minimum image needs at least 2 r_list = {} (r_list = r_cut + skin = {})",
+                a, box.length(a), 2.0 * r_list_, r_list_));
+    cells_ = CellList<D>(box_, r_list_);
+}
+
+template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
+    const std::size_t n = pos.size();
+    if (n > max_particles)
+        throw InputError(
+            fmt::format("neighbour list: {} particles exceed the limit of {}", n, max_particles));
+    const auto sn = static_cast<std::int64_t>(n);
+
+    // Checked before binning: a NaN would make the cell index undefined, and since
+    // minimum_image is exact only within 1.5 L, a position further than 0.75 L from the
+    // centre would silently lose pairs.
+    std::array<double, D> reach;
+    for (int a = 0; a < D; ++a)
+        reach[a] = box_.periodic(a) ? 0.75 * box_.length(a) : std::numeric_limits<double>::max();
+    std::int64_t bad = sn;
+#pragma omp parallel for schedule(static) reduction(min : bad) if (sn >= parallel_min)
+    for (std::int64_t i = 0; i < sn; ++i)
+        for (int a = 0; a < D; ++a)
+            if (!(std::abs(pos[i][a]) <= reach[a])) bad = std::min(bad, i);
+    if (bad < sn) {
+        std::string where = "(";
+        for (int a = 0; a < D; ++a) where += fmt::format("{}{}", a ? ", " : "", pos[bad][a]);
+        throw RunError(fmt::format("neighbour list: particle {} (storage index) is at {}), which "
+                                   "is not finite or not wrapped into the periodic box",
+                                   bad, where));
+    }
+    n_ = 0; // until the rows below are complete
+
+    // The shared cell list bins the particles; its linked lists are then flattened into
+    // cell order once, because chasing them (and the scattered positions they point to)
+    // for every stencil of every cell, in both passes, cost more than the distance tests.
+    cells_.build(pos);
+    const std::size_t n_cells = cells_.cell_count();
+    const auto sc = static_cast<std::int64_t>(n_cells);
+    cell_start_.resize(n_cells + 1);
+    by_cell_.resize(n);
+    ref_.resize(n);
+    cell_start_[0] = 0;
+#pragma omp parallel for schedule(static) if (sn >= parallel_min)
+    for (std::int64_t c = 0; c < sc; ++c) {
+        std::uint32_t len = 0;
+        for (std::int32_t j = cells_.head(static_cast<std::int32_t>(c)); j != CellList<D>::none;
+             j = cells_.next(static_cast<std::uint32_t>(j)))
+            ++len;
+        cell_start_[c + 1] = len;
+    }
+    for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
+#pragma omp parallel for schedule(static) if (sn >= parallel_min)
+    for (std::int64_t c = 0; c < sc; ++c) {
+        std::uint32_t k = cell_start_[c];
+        for (std::int32_t j = cells_.head(static_cast<std::int32_t>(c)); j != CellList<D>::none;
+             j = cells_.next(static_cast<std::uint32_t>(j)), ++k) {
+            by_cell_[k] = static_cast<std::uint32_t>(j);
+            ref_[k] = pos[static_cast<std::size_t>(j)];
+        }
+    }
+
+    if (scratch_.size() < static_cast<std::size_t>(omp_get_max_threads()))
+        scratch_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+    const double rl2 = r_list_ * r_list_;
+    // Calls row(i, ri, s) for every particle i, where s holds the m candidates around
+    // i's cell (stencil order, then cell-list order). The row of i depends only on the
+    // positions, whichever thread handles its cell.
+    auto for_each_particle = [&](auto&& row) {
+    // dynamic: clustered (phase-separated) systems put most pairs in a few cells
+#pragma omp parallel if (sn >= parallel_min)
+        {
+            Scratch& s = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 64)
+            for (std::int64_t c = 0; c < sc; ++c) {
+                if (cell_start_[c] == cell_start_[c + 1]) continue;
+                // plain loops, not std::copy: the ranges hold a few particles each, and a
+                // memmove call per range cost more than the copying
+                std::size_t m = 0;
+                cells_.for_each_neighbor_cell(static_cast<std::int32_t>(c), [&](std::int32_t nc) {
+                    const std::uint32_t b = cell_start_[nc], e = cell_start_[nc + 1];
+                    if (m + (e - b) > s.j.size()) {
+                        const std::size_t size = 2 * (m + (e - b));
+                        s.r.resize(size);
+                        s.j.resize(size);
+                        s.hit.resize(size);
+                    }
+                    Vec<D>* const r = s.r.data();
+                    std::uint32_t* const idx = s.j.data();
+                    for (std::uint32_t k = b; k < e; ++k, ++m) {
+                        r[m] = ref_[k];
+                        idx[m] = by_cell_[k];
+                    }
+                });
+                for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+                    row(by_cell_[k], ref_[k], s, m);
+            }
+        }
+    };
+
+    offsets_.resize(n + 1);
+    offsets_[0] = 0;
+    for_each_particle([&](std::uint32_t i, const Vec<D>& ri, Scratch& s, std::size_t m) {
+        std::size_t c = 0;
+        for (std::size_t k = 0; k < m; ++k)
+            c += (s.j[k] != i) & (norm2(box_.minimum_image(ri - s.r[k])) < rl2);
+        offsets_[i + 1] = c;
+    });
+    // serial: O(N) adds, far cheaper than either pass
+    for (std::size_t i = 0; i < n; ++i) offsets_[i + 1] += offsets_[i];
+    entries_ = offsets_[n];
+    if (entries_ > capacity_) {
+        capacity_ = grow(entries_);
+        neighbors_.reset(); // free first so that old and new never coexist
+        neighbors_ = std::make_unique_for_overwrite<std::uint32_t[]>(capacity_);
+    }
+
+    std::uint32_t* const out = neighbors_.get();
+    for_each_particle([&](std::uint32_t i, const Vec<D>& ri, Scratch& s, std::size_t m) {
+        // Branch-free: about a third of the candidates hit, at random, so a branch would
+        // often mispredict. Every candidate is stored and the cursor advances only on a
+        // hit; the store past the last hit is why this goes through scratch, not the row.
+        std::uint32_t* const hit = s.hit.data();
+        std::size_t h = 0;
+        for (std::size_t k = 0; k < m; ++k) {
+            hit[h] = s.j[k];
+            h += (s.j[k] != i) & (norm2(box_.minimum_image(ri - s.r[k])) < rl2);
+        }
+        std::copy_n(hit, h, out + offsets_[i]);
+    });
+
+    n_ = n;
+    ++builds_;
+}
+
+template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& pos) const {
+    if (builds_ == 0 || n_ != pos.size()) return true;
+    const double lim2 = 0.25 * skin_ * skin_;
+    const auto sn = static_cast<std::int64_t>(n_);
+    bool moved = false;
+#pragma omp parallel for schedule(static) reduction(|| : moved) if (sn >= parallel_min)
+    for (std::int64_t k = 0; k < sn; ++k) {
+        // written as !(<=) so that a NaN position asks for a rebuild (which reports it)
+        if (!(norm2(box_.minimum_image(pos[by_cell_[k]] - ref_[k])) <= lim2)) moved = true;
+    }
+    return moved;
+}
+
+template <int D> std::size_t NeighborList<D>::memory_bytes() const {
+    std::size_t scratch = scratch_.capacity() * sizeof(Scratch);
+    for (const Scratch& s : scratch_)
+        scratch += s.r.capacity() * sizeof(Vec<D>) +
+                   (s.j.capacity() + s.hit.capacity()) * sizeof(std::uint32_t);
+    return cells_.memory_bytes() +
+           (cell_start_.capacity() + by_cell_.capacity()) * sizeof(std::uint32_t) +
+           offsets_.capacity() * sizeof(std::size_t) + capacity_ * sizeof(std::uint32_t) +
+           ref_.capacity() * sizeof(Vec<D>) + scratch;
+}
+
+template class NeighborList<2>;
+template class NeighborList<3>;
+
+} // namespace pedesis

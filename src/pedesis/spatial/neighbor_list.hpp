@@ -1,0 +1,88 @@
+#pragma once
+// Verlet neighbour list for the soft / active engines: every pair closer than
+// r_list = r_cut + skin, rebuilt only when some particle has moved more than skin/2,
+// so that no pair within r_cut can be missing in between.
+//
+// The list is FULL (each pair appears in both particles' rows) and stored in CSR form.
+// A half list would halve the memory but force loops would then scatter into j with
+// atomics or per-thread buffers; with a full list each particle sums its own row in a
+// fixed order, so force loops run in parallel without atomics and give bit-identical
+// results whatever the thread count. The row order is the cell-list scan order, which
+// depends only on the positions, never on the threads.
+#include "pedesis/core/box.hpp"
+#include "pedesis/spatial/cell_list.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace pedesis {
+
+template <int D> class NeighborList {
+  public:
+    // Throws InputError naming the parameter (r_cut > 0, skin >= 0, both finite) or the
+    // periodic axis shorter than 2 r_list (the minimum image would be ambiguous).
+    NeighborList(const Box<D>& box, double r_cut, double skin);
+
+    // Positions must be wrapped into the box on periodic axes (SoftState keeps them so);
+    // a non-finite or unwrapped position throws RunError naming the particle.
+    void build(const std::vector<Vec<D>>& pos);
+
+    // True when any particle has moved more than skin/2 since the last build (minimum
+    // image displacement, so crossing a periodic boundary is not motion), when the
+    // particle count changed, or before the first build.
+    bool needs_rebuild(const std::vector<Vec<D>>& pos) const;
+
+    // Particles in the last build; rows below are valid for i < size().
+    std::size_t size() const { return n_; }
+    std::uint32_t count(std::size_t i) const {
+        return static_cast<std::uint32_t>(offsets_[i + 1] - offsets_[i]);
+    }
+    const std::uint32_t* begin(std::size_t i) const { return neighbors_.get() + offsets_[i]; }
+    const std::uint32_t* end(std::size_t i) const { return neighbors_.get() + offsets_[i + 1]; }
+    // size() + 1 entries; row i is neighbors()[offsets()[i], offsets()[i + 1]).
+    std::span<const std::size_t> offsets() const { return {offsets_.data(), offsets_.size()}; }
+    std::span<const std::uint32_t> neighbors() const { return {neighbors_.get(), entries_}; }
+
+    double r_cut() const { return r_cut_; }
+    double skin() const { return skin_; }
+    double r_list() const { return r_list_; }
+    const Box<D>& box() const { return box_; }
+    std::uint64_t builds() const { return builds_; }
+    std::size_t memory_bytes() const;
+
+  private:
+    // per thread: the particles around one cell, gathered contiguously; kept across
+    // builds so that a build allocates nothing once the sizes have settled
+    struct Scratch {
+        std::vector<Vec<D>> r;
+        std::vector<std::uint32_t> j, hit;
+    };
+
+    Box<D> box_;
+    double r_cut_, skin_, r_list_;
+    CellList<D> cells_;
+    std::size_t n_ = 0;
+    std::uint64_t builds_ = 0;
+    // 64-bit offsets: a dense 3D system with ~80 neighbours overflows 32 bits near
+    // 5e7 particles, which is a size people run.
+    std::vector<std::size_t> offsets_;
+    // Raw storage with its own capacity: std::vector::resize would zero every entry on
+    // growth (wasted writes) and grows by doubling (wasted memory).
+    std::unique_ptr<std::uint32_t[]> neighbors_;
+    std::size_t entries_ = 0, capacity_ = 0;
+    // The cell list flattened into cell order: the particles of cell c are
+    // by_cell_[cell_start_[c] .. cell_start_[c + 1]), and ref_[k] is the position of
+    // by_cell_[k] at the build. Scans then read contiguous memory, and ref_ doubles as
+    // the reference for needs_rebuild, so cell order costs only 4 bytes per particle.
+    std::vector<std::uint32_t> cell_start_, by_cell_;
+    std::vector<Vec<D>> ref_;
+    std::vector<Scratch> scratch_;
+};
+
+extern template class NeighborList<2>;
+extern template class NeighborList<3>;
+
+} // namespace pedesis

@@ -1,0 +1,133 @@
+// Dynamics of active Brownian particles against exact results (PHYSICS.md):
+// free-particle MSD and orientation autocorrelation, flocking by polar alignment, and
+// trajectories independent of the number of OpenMP threads.
+#include "support/soft_builder.hpp"
+
+#include "pedesis/soft/brownian.hpp"
+#include "pedesis/soft/evolver.hpp"
+#include "pedesis/soft/pair_force.hpp"
+#include "pedesis/soft/pair_potentials.hpp"
+#include "pedesis/soft/polar_align.hpp"
+#include "pedesis/soft/self_propulsion.hpp"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cstring>
+
+using namespace pedesis;
+
+namespace {
+
+// Free ABPs: MSD(t) = 2 d D_t t + 2 v0^2 tau^2 (t/tau - 1 + e^{-t/tau}), tau = 1/((d-1) D_r),
+// and <n(t).n(0)> = e^{-t/tau}; in 2D this is PHYSICS.md's formula with tau = 1/D_r.
+//
+// Tolerance 3% on the MSD. Statistics: N = 20000 independent particles, one time origin;
+// Delta r^2 of one particle has a relative spread of about 1 (exponential-like in 2D,
+// less in 3D), so the mean has a relative standard error of about 1/sqrt(N) = 0.7%, a
+// quarter of the tolerance. Discretisation: Euler-Maruyama uses n at the start of each
+// step; its relative error in the active part is O((d-1) D_r dt) = 0.25% (2D), 1% (3D).
+// Orientation: the mean of n(t).n(0) over N has a standard error below 0.7/sqrt(N) =
+// 0.005; tolerance 0.02 absolute (4 standard errors).
+template <int D> void check_free_abp() {
+    const std::size_t n = 20000;
+    const double v0 = 1.0, T = 0.1, Tr = 0.5, gamma = 1.0, dt = D == 2 ? 0.005 : 0.01;
+    auto s = test::random_soft_system<D>(n, 200.0, 1.0, 11);
+    const std::vector<Vec<D>> n0 = s.director;
+    Evolver<D> e(s, 2.0);
+    e.add_force(std::make_unique<SelfPropulsion<D>>(v0 * gamma));
+    e.add_integrator(std::make_unique<BrownianIntegrator<D>>(T, gamma, 5));
+    e.add_integrator(std::make_unique<BrownianRotationIntegrator<D>>(Tr, gamma, 5));
+    std::vector<Vec<D>> start(n);
+    for (std::size_t i = 0; i < n; ++i) start[i] = s.unwrapped(i);
+
+    const double Dt = T / gamma, Dr = Tr / gamma, tau = 1.0 / ((D - 1) * Dr);
+    std::uint64_t done = 0;
+    for (double t : {0.2, 1.0, 4.0}) {
+        const auto steps = static_cast<std::uint64_t>(std::llround(t / dt));
+        e.run(steps - done, dt);
+        done = steps;
+        double msd = 0.0, corr = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            msd += norm2(s.unwrapped(i) - start[i]);
+            corr += dot(s.director[i], n0[i]);
+        }
+        msd /= n;
+        corr /= n;
+        const double theory =
+            2.0 * D * Dt * t + 2.0 * v0 * v0 * tau * tau * (t / tau - 1.0 + std::exp(-t / tau));
+        EXPECT_NEAR(msd / theory, 1.0, 0.03) << "MSD at t = " << t << " (D = " << D << ")";
+        EXPECT_NEAR(corr, std::exp(-t / tau), 0.02) << "orientation correlation at t = " << t;
+    }
+}
+
+TEST(FreeAbp, MsdAndOrientation2D) {
+    check_free_abp<2>();
+}
+TEST(FreeAbp, MsdAndOrientation3D) {
+    check_free_abp<3>();
+}
+
+// Polar order P = |sum n_i| / N.
+template <int D> double polar_order(const SoftState<D>& s) {
+    Vec<D> m{};
+    for (const auto& d : s.director) m += d;
+    return norm(m) / static_cast<double>(s.size());
+}
+
+// The tutorial's model without noise: alignment must order the system (P > 0.99), from
+// a random start where P ~ 1/sqrt(N) (checked too, so the test cannot pass trivially).
+TEST(PolarAlign, NoiselessAlignmentOrdersTheSystem) {
+    auto s = test::random_soft_system<2>(400, std::sqrt(400 / 0.4), 1.0, 21, 1.0);
+    ASSERT_LT(polar_order(s), 0.2);
+    Evolver<2> e(s, 0.5);
+    e.add_force(std::make_unique<PairForce<2, HarmonicPair>>("harmonic", HarmonicPair{10.0, 2.0}));
+    e.add_force(std::make_unique<SelfPropulsion<2>>(1.0));
+    e.add_torque(std::make_unique<PolarAlign<2>>(1.0, 2.0));
+    e.add_integrator(std::make_unique<BrownianIntegrator<2>>(0.0, 1.0, 1));
+    e.add_integrator(std::make_unique<BrownianRotationIntegrator<2>>(0.0, 1.0, 1));
+    double order = 0.0;
+    for (int block = 0; block < 40 && order <= 0.99; ++block) {
+        e.run(500, 0.01);
+        order = polar_order(s);
+    }
+    EXPECT_GT(order, 0.99) << "after " << s.time << " time units";
+    std::printf("polar order %.4f at t = %.0f\n", order, s.time);
+}
+
+// Same seed, 1 and 2 threads: bit-identical positions and directors after 1000 steps
+// (2D; 500 in 3D) of the tutorial's full model (noise on).
+template <int D> SoftState<D> tutorial_run(int threads) {
+    omp_set_num_threads(threads);
+    auto s = test::random_soft_system<D>(D == 2 ? 1000 : 600, D == 2 ? 50.0 : 12.0, 1.0, 7, 1.0);
+    Evolver<D> e(s, 0.5);
+    e.add_force(std::make_unique<PairForce<D, HarmonicPair>>("harmonic", HarmonicPair{10.0, 2.0}));
+    e.add_force(std::make_unique<SelfPropulsion<D>>(1.0));
+    e.add_torque(std::make_unique<PolarAlign<D>>(1.0, 2.0));
+    e.add_integrator(std::make_unique<BrownianIntegrator<D>>(0.1, 1.0, 3));
+    e.add_integrator(std::make_unique<BrownianRotationIntegrator<D>>(0.1, 1.0, 3));
+    e.run(D == 2 ? 1000 : 500, 0.01);
+    return s;
+}
+
+template <int D> void check_thread_independence() {
+    const auto one = tutorial_run<D>(1);
+    const auto two = tutorial_run<D>(2);
+    omp_set_num_threads(1);
+    ASSERT_EQ(one.size(), two.size());
+    EXPECT_EQ(
+        std::memcmp(one.p.position.data(), two.p.position.data(), one.size() * sizeof(Vec<D>)), 0);
+    EXPECT_EQ(std::memcmp(one.director.data(), two.director.data(), one.size() * sizeof(Vec<D>)),
+              0);
+    EXPECT_EQ(std::memcmp(one.image.data(), two.image.data(), one.size() * sizeof(one.image[0])),
+              0);
+}
+
+TEST(Reproducibility, OneAndTwoThreadsBitIdentical2D) {
+    check_thread_independence<2>();
+}
+TEST(Reproducibility, OneAndTwoThreadsBitIdentical3D) {
+    check_thread_independence<3>();
+}
+
+} // namespace

@@ -1,0 +1,42 @@
+#pragma once
+// Builds SoftState systems for the soft/active-matter tests.
+#include "pedesis/core/rng.hpp"
+#include "pedesis/soft/soft_state.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace pedesis::test {
+
+// N particles of radius `radius` placed uniformly at random in a periodic box of side L
+// with centres at least `min_distance` apart (soft particles may overlap; the ABP
+// tutorial's builder uses 1.0), directors uniformly random.
+template <int D>
+SoftState<D> random_soft_system(std::size_t n, double L, double radius = 1.0,
+                                std::uint64_t seed = 1, double min_distance = 0.0) {
+    SoftState<D> s;
+    std::array<bool, D> periodic;
+    periodic.fill(true);
+    s.box = Box<D>(Vec<D>::filled(L), periodic);
+    s.resize(n);
+    s.p.species_table = {Species{"A", radius, 1.0}};
+    for (std::size_t i = 0; i < n; ++i) {
+        CounterRng rng(seed, RngStream::placement, static_cast<std::uint32_t>(i));
+        s.p.tag[i] = static_cast<std::uint32_t>(i);
+        s.p.species[i] = 0;
+        bool free = false;
+        while (!free) { // brute force: these systems are small
+            for (int a = 0; a < D; ++a) s.p.position[i][a] = rng.uniform(-0.5 * L, 0.5 * L);
+            free = true;
+            for (std::size_t j = 0; j < i && free; ++j)
+                free = norm2(s.box.minimum_image(s.p.position[i] - s.p.position[j])) >=
+                       min_distance * min_distance;
+        }
+        Vec<D> d;
+        for (int a = 0; a < D; ++a) d[a] = rng.normal();
+        s.director[i] = d * (1.0 / norm(d));
+    }
+    return s;
+}
+
+} // namespace pedesis::test

@@ -1,0 +1,352 @@
+// NeighborList: the rows are exactly the brute-force pairs within r_list (periodic,
+// walled and mixed boxes, axes with 1, 2 and 3 cells, elongated boxes), the full list
+// is symmetric, the rows do not depend on the thread count, needs_rebuild follows the
+// skin/2 rule without mistaking a periodic wrap for motion, buffers are reused, and bad
+// parameters are reported by name.
+#include "pedesis/core/rng.hpp"
+#include "pedesis/spatial/neighbor_list.hpp"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace pedesis;
+
+namespace {
+
+using PairList = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+template <int D> std::string describe(const Box<D>& box, double r_cut, double skin) {
+    std::string s = "L = (";
+    for (int a = 0; a < D; ++a)
+        s += std::to_string(box.length(a)) + (box.periodic(a) ? "p" : "w") +
+             (a + 1 < D ? ", " : ")");
+    return s + " r_cut " + std::to_string(r_cut) + " skin " + std::to_string(skin);
+}
+
+template <int D>
+std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, std::uint64_t seed) {
+    std::vector<Vec<D>> pos(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        CounterRng rng(seed, RngStream::placement, static_cast<std::uint32_t>(i));
+        for (int a = 0; a < D; ++a) pos[i][a] = rng.uniform(box.lo(a), box.hi(a));
+        box.wrap(pos[i]);
+    }
+    // particles exactly on the boundaries (walls, or -L/2 on periodic axes), where cell
+    // assignment and minimum image are most fragile
+    for (std::size_t i = 0; i < std::min<std::size_t>(n, 6); ++i)
+        for (int a = 0; a < D; ++a) {
+            if (i % 2 == 0)
+                pos[i][a] = box.lo(a);
+            else if (!box.periodic(a))
+                pos[i][a] = box.hi(a);
+        }
+    return pos;
+}
+
+// Ordered pairs (i, j), i != j, both ways round, sorted.
+template <int D> PairList brute_pairs(const Box<D>& box, const std::vector<Vec<D>>& pos, double r) {
+    PairList s;
+    for (std::uint32_t i = 0; i < pos.size(); ++i)
+        for (std::uint32_t j = 0; j < pos.size(); ++j)
+            if (i != j && norm2(box.minimum_image(pos[i] - pos[j])) < r * r) s.push_back({i, j});
+    return s;
+}
+
+// Every entry of the list, duplicates kept (so a pair listed twice shows up).
+template <int D> PairList listed_pairs(const NeighborList<D>& nl) {
+    PairList s;
+    for (std::uint32_t i = 0; i < nl.size(); ++i)
+        for (const std::uint32_t* p = nl.begin(i); p != nl.end(i); ++p) s.push_back({i, *p});
+    std::sort(s.begin(), s.end());
+    return s;
+}
+
+template <int D> struct Case {
+    Vec<D> L;
+    std::array<bool, D> periodic;
+    double r_cut, skin;
+};
+
+template <int D> void check_against_brute_force(const Case<D>& c, std::uint64_t seed) {
+    const Box<D> box(c.L, c.periodic);
+    const auto n = static_cast<std::size_t>(std::clamp(0.8 * box.volume(), 30.0, 1500.0));
+    const auto pos = random_positions(box, n, seed);
+    NeighborList<D> nl(box, c.r_cut, c.skin);
+    nl.build(pos);
+    SCOPED_TRACE(describe(box, c.r_cut, c.skin));
+    ASSERT_EQ(nl.size(), n);
+    ASSERT_EQ(nl.offsets().size(), n + 1);
+    EXPECT_EQ(nl.offsets()[0], 0u);
+    EXPECT_EQ(nl.offsets()[n], nl.neighbors().size());
+    std::size_t total = 0;
+    for (std::uint32_t i = 0; i < n; ++i) total += nl.count(i);
+    EXPECT_EQ(total, nl.neighbors().size());
+    const PairList expect = brute_pairs(box, pos, nl.r_list());
+    EXPECT_GT(expect.size(), 0u) << "case too sparse to test anything";
+    EXPECT_EQ(listed_pairs(nl), expect);
+}
+
+TEST(NeighborList, MatchesBruteForce2D) {
+    const std::vector<Case<2>> cases = {
+        {{{20.0, 20.0}}, {true, true}, 2.0, 0.5},   // 8 x 8 cells
+        {{{20.0, 20.0}}, {false, false}, 2.0, 0.5}, // walls
+        {{{20.0, 13.0}}, {true, false}, 2.0, 0.5},  // mixed
+        {{{13.0, 20.0}}, {false, true}, 1.5, 0.3},  // mixed the other way
+        {{{5.5, 5.5}}, {true, true}, 2.0, 0.5},     // L = 2.2 r_list: 2 cells per axis
+        {{{5.0, 5.0}}, {true, true}, 2.0, 0.5},     // L = 2 r_list exactly
+        {{{8.0, 5.5}}, {true, true}, 2.0, 0.5},     // 3 x 2 cells
+        {{{60.0, 5.5}}, {true, true}, 2.0, 0.5},    // elongated
+        {{{60.0, 1.5}}, {true, false}, 2.0, 0.5},   // 1 cell across a thin walled slab
+        {{{3.0, 3.0}}, {false, false}, 2.0, 0.5},   // 1 cell in all
+        {{{5.5, 40.0}}, {false, true}, 2.0, 0.5},   // 2 walled cells, long periodic axis
+        {{{12.0, 12.0}}, {true, true}, 2.5, 0.0},   // no skin
+    };
+    for (std::size_t k = 0; k < cases.size(); ++k)
+        for (std::uint64_t seed : {11u, 12u}) check_against_brute_force(cases[k], 100 * k + seed);
+}
+
+TEST(NeighborList, MatchesBruteForce3D) {
+    const std::vector<Case<3>> cases = {
+        {{{8.0, 8.0, 8.0}}, {true, true, true}, 1.2, 0.3},
+        {{{8.0, 8.0, 8.0}}, {false, false, false}, 1.2, 0.3},
+        {{{3.3, 3.3, 3.3}}, {true, true, true}, 1.2, 0.3},    // 2.2 r_list: 2 cells per axis
+        {{{3.0, 8.0, 4.0}}, {true, true, false}, 1.2, 0.3},   // 2 r_list exactly on x
+        {{{15.0, 3.3, 1.0}}, {true, true, false}, 1.2, 0.3},  // elongated, 1 walled cell
+        {{{4.6, 20.0, 3.3}}, {true, false, true}, 1.2, 0.3},  // 3, 13 and 2 cells
+        {{{1.2, 1.4, 30.0}}, {false, false, true}, 1.0, 0.2}, // a walled channel
+    };
+    for (std::size_t k = 0; k < cases.size(); ++k)
+        for (std::uint64_t seed : {21u, 22u}) check_against_brute_force(cases[k], 100 * k + seed);
+}
+
+TEST(NeighborList, FullListIsSymmetricWithoutSelfOrDuplicates) {
+    const Box<2> box(Vec<2>{{30.0, 17.0}}, {true, false});
+    const auto pos = random_positions(box, 900, 5);
+    NeighborList<2> nl(box, 2.0, 0.5);
+    nl.build(pos);
+    std::vector<std::vector<std::uint32_t>> rows(nl.size());
+    for (std::uint32_t i = 0; i < nl.size(); ++i) {
+        rows[i].assign(nl.begin(i), nl.end(i));
+        std::sort(rows[i].begin(), rows[i].end());
+        EXPECT_EQ(std::adjacent_find(rows[i].begin(), rows[i].end()), rows[i].end())
+            << "particle " << i << " lists a neighbour twice";
+    }
+    std::size_t entries = 0;
+    for (std::uint32_t i = 0; i < nl.size(); ++i)
+        for (std::uint32_t j : rows[i]) {
+            ++entries;
+            EXPECT_NE(j, i) << "particle " << i << " lists itself";
+            EXPECT_TRUE(std::binary_search(rows[j].begin(), rows[j].end(), i))
+                << j << " in the row of " << i << " but not the reverse";
+        }
+    EXPECT_GT(entries, 0u);
+    EXPECT_EQ(entries % 2, 0u);
+}
+
+// Rows identical (content and order) with 1, 2 and 3 threads, so force sums are too.
+TEST(NeighborList, SameRowsWhateverTheThreadCount) {
+    const int saved = omp_get_max_threads();
+    const double L = std::sqrt(20000 / 0.4);
+    for (bool periodic : {true, false}) {
+        const Box<2> box(Vec<2>{{L, L}}, {periodic, periodic});
+        const auto pos = random_positions(box, 20000, 77);
+        std::vector<std::size_t> off1;
+        std::vector<std::uint32_t> nb1;
+        for (int threads : {1, 2, 3}) {
+            omp_set_num_threads(threads);
+            NeighborList<2> nl(box, 2.0, 0.5);
+            nl.build(pos);
+            std::vector<std::size_t> off(nl.offsets().begin(), nl.offsets().end());
+            std::vector<std::uint32_t> nb(nl.neighbors().begin(), nl.neighbors().end());
+            if (threads == 1) {
+                off1 = off;
+                nb1 = nb;
+                EXPECT_GT(nb1.size(), 20000u);
+            } else {
+                EXPECT_EQ(off, off1) << threads << " threads, periodic " << periodic;
+                EXPECT_EQ(nb, nb1) << threads << " threads, periodic " << periodic;
+            }
+        }
+    }
+    omp_set_num_threads(saved);
+}
+
+TEST(NeighborList, NeedsRebuildAfterSkinHalf) {
+    const double skin = 0.4, half = 0.5 * skin;
+    const Box<2> box(Vec<2>{{20.0, 20.0}}, {true, false});
+    auto pos = random_positions(box, 400, 9);
+    NeighborList<2> nl(box, 2.0, skin);
+    EXPECT_TRUE(nl.needs_rebuild(pos)) << "never built";
+    nl.build(pos);
+    EXPECT_FALSE(nl.needs_rebuild(pos));
+
+    // every particle just under skin/2, in random directions
+    auto moved = pos;
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+        CounterRng rng(3, RngStream::velocity, static_cast<std::uint32_t>(i));
+        const double phi = rng.uniform(0.0, 6.283185307179586);
+        moved[i] += 0.99 * half * Vec<2>{{std::cos(phi), std::sin(phi)}};
+        box.wrap(moved[i]);
+    }
+    EXPECT_FALSE(nl.needs_rebuild(moved));
+
+    // one particle just over skin/2, along the periodic and along the walled axis
+    for (int a = 0; a < 2; ++a) {
+        auto one = moved;
+        one[200] = pos[200];
+        one[200][a] += (pos[200][a] < 0 ? 1.01 : -1.01) * half;
+        EXPECT_TRUE(nl.needs_rebuild(one)) << "axis " << a;
+    }
+    auto diag = moved;
+    diag[17] = pos[17] + Vec<2>::filled(1.01 * half / std::sqrt(2.0));
+    box.wrap(diag[17]);
+    EXPECT_TRUE(nl.needs_rebuild(diag));
+
+    nl.build(diag);
+    EXPECT_FALSE(nl.needs_rebuild(diag)) << "reference positions not updated by build";
+    EXPECT_TRUE(nl.needs_rebuild(pos)) << "reference positions not updated by build";
+
+    auto fewer = diag;
+    fewer.pop_back();
+    EXPECT_TRUE(nl.needs_rebuild(fewer)) << "particle count changed";
+}
+
+TEST(NeighborList, PeriodicWrapIsNotMotion) {
+    const double skin = 0.4, half = 0.5 * skin;
+    const Box<2> box(Vec<2>{{20.0, 20.0}}, {true, true});
+    auto pos = random_positions(box, 100, 4);
+    pos[0] = Vec<2>{{box.hi(0) - 0.05, 1.0}};  // about to leave through +x
+    pos[1] = Vec<2>{{-3.0, box.lo(1) + 0.02}}; // about to leave through -y
+    NeighborList<2> nl(box, 2.0, skin);
+    nl.build(pos);
+
+    for (double step : {0.5 * half, 0.99 * half}) {
+        auto p = pos;
+        p[0][0] += step;
+        p[1][1] -= step;
+        box.wrap(p[0]);
+        box.wrap(p[1]);
+        ASSERT_LT(p[0][0], 0.0) << "test setup: particle 0 should have wrapped";
+        ASSERT_GT(p[1][1], 0.0) << "test setup: particle 1 should have wrapped";
+        EXPECT_FALSE(nl.needs_rebuild(p)) << "wrap of a particle moved by " << step;
+    }
+    for (int k = 0; k < 2; ++k) {
+        auto p = pos;
+        if (k == 0)
+            p[0][0] += 1.01 * half;
+        else
+            p[1][1] -= 1.01 * half;
+        box.wrap(p[k]);
+        EXPECT_TRUE(nl.needs_rebuild(p))
+            << "particle " << k << " moved over skin/2 across the edge";
+    }
+}
+
+TEST(NeighborList, ZeroSkinRebuildsOnAnyMotion) {
+    const Box<2> box(Vec<2>{{10.0, 10.0}}, {true, true});
+    auto pos = random_positions(box, 50, 2);
+    NeighborList<2> nl(box, 2.0, 0.0);
+    nl.build(pos);
+    EXPECT_FALSE(nl.needs_rebuild(pos));
+    pos[7][0] += 1e-9;
+    EXPECT_TRUE(nl.needs_rebuild(pos));
+}
+
+TEST(NeighborList, CountsBuildsAndReusesBuffers) {
+    const std::size_t n = 36000;
+    const double L = std::sqrt(n / 0.4);
+    const Box<2> box(Vec<2>{{L, L}}, {true, true});
+    auto pos = random_positions(box, n, 31);
+    NeighborList<2> nl(box, 2.0, 0.5);
+    EXPECT_EQ(nl.builds(), 0u);
+    nl.build(pos);
+    EXPECT_EQ(nl.builds(), 1u);
+    const auto* nb = nl.neighbors().data();
+    const auto* off = nl.offsets().data();
+    const std::size_t bytes = nl.memory_bytes();
+    // the soft engine's budget is 200 bytes per particle in all (2D, density 0.4,
+    // r_list 2.5); the list may take about a third of it
+    EXPECT_LT(static_cast<double>(bytes) / n, 80.0);
+    EXPECT_GT(static_cast<double>(bytes) / n, 4.0 * 7.0) << "memory_bytes misses the rows";
+
+    for (int k = 0; k < 3; ++k) {
+        for (std::size_t i = 0; i < n; ++i) {
+            CounterRng rng(7, RngStream::velocity, static_cast<std::uint32_t>(i),
+                           static_cast<std::uint32_t>(k));
+            pos[i] += Vec<2>{{rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)}};
+            box.wrap(pos[i]);
+        }
+        nl.build(pos);
+    }
+    EXPECT_EQ(nl.builds(), 4u);
+    EXPECT_EQ(nl.neighbors().data(), nb) << "rows reallocated on a rebuild";
+    EXPECT_EQ(nl.offsets().data(), off) << "offsets reallocated on a rebuild";
+    EXPECT_EQ(nl.memory_bytes(), bytes);
+}
+
+template <class F> std::string error_of(F&& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "(no InputError)";
+}
+
+TEST(NeighborList, RejectsBadParametersByName) {
+    const Box<2> box(Vec<2>{{20.0, 20.0}}, {true, true});
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    for (double r : {0.0, -1.0, nan, inf})
+        EXPECT_NE(error_of([&] { NeighborList<2>(box, r, 0.5); }).find("r_cut"), std::string::npos)
+            << "r_cut = " << r;
+    for (double s : {-0.1, nan, inf})
+        EXPECT_NE(error_of([&] { NeighborList<2>(box, 2.0, s); }).find("skin"), std::string::npos)
+            << "skin = " << s;
+    EXPECT_NO_THROW(NeighborList<2>(box, 2.0, 0.0));
+}
+
+TEST(NeighborList, RejectsPeriodicBoxShorterThanTwiceRList) {
+    // r_list = 2.5: the y axis (4.9) is too short, x is fine
+    const std::string msg = error_of([] {
+        NeighborList<2>(Box<2>(Vec<2>{{20.0, 4.9}}, {true, true}), 2.0, 0.5);
+    });
+    EXPECT_NE(msg.find("too small"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("axis 1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("4.9"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("2.5"), std::string::npos) << msg;
+    // the same short axis between walls needs no minimum image
+    EXPECT_NO_THROW(NeighborList<2>(Box<2>(Vec<2>{{20.0, 4.9}}, {true, false}), 2.0, 0.5));
+    EXPECT_NO_THROW(NeighborList<2>(Box<2>(Vec<2>{{20.0, 5.0}}, {true, true}), 2.0, 0.5));
+    const std::string msg3 = error_of([] {
+        NeighborList<3>(Box<3>(Vec<3>{{3.0, 3.0, 2.9}}, {true, true, true}), 1.2, 0.3);
+    });
+    EXPECT_NE(msg3.find("axis 2"), std::string::npos) << msg3;
+}
+
+TEST(NeighborList, BadPositionNamesTheParticle) {
+    const Box<2> box(Vec<2>{{20.0, 20.0}}, {true, true});
+    auto pos = random_positions(box, 30, 1);
+    NeighborList<2> nl(box, 2.0, 0.5);
+    nl.build(pos);
+    for (double x : {std::numeric_limits<double>::quiet_NaN(), 16.0}) {
+        auto p = pos;
+        p[13][1] = x;
+        try {
+            nl.build(p);
+            ADD_FAILURE() << "no error for position " << x;
+        } catch (const RunError& e) {
+            EXPECT_NE(std::string(e.what()).find("particle 13"), std::string::npos) << e.what();
+        }
+        EXPECT_TRUE(nl.needs_rebuild(p));
+    }
+}
+
+} // namespace
