@@ -15,11 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// errno is the only place the C++ streams leave the reason for a failure.
-std::string reason(int err) {
-    return err != 0 ? ": " + std::generic_category().message(err) : std::string{};
-}
-
 void remove_quietly(const fs::path& p) {
     std::error_code ignored;
     fs::remove(p, ignored);
@@ -51,7 +46,7 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
         std::ios::out | std::ios::trunc | (binary ? std::ios::binary : std::ios::openmode{});
     errno = 0;
     std::ofstream out(tmp, mode);
-    if (!out) throw InputError(path.string() + ": cannot open for writing" + reason(errno));
+    if (!out) throw InputError(path.string() + ": cannot open for writing" + errno_text(errno));
 
     try {
         body(out);
@@ -79,7 +74,7 @@ void write_file_atomically(const fs::path& path, const std::function<void(std::o
     if (out.fail()) {
         const int err = errno;
         remove_quietly(tmp);
-        throw InputError(path.string() + ": write error" + reason(err));
+        throw InputError(path.string() + ": write error" + errno_text(err));
     }
     rename_onto(tmp, path);
 }
@@ -88,7 +83,7 @@ AtomicAppendFile::AtomicAppendFile(fs::path path) : path_(std::move(path)), part
     part_ += ".part";
     errno = 0;
     out_.open(part_, std::ios::out | std::ios::trunc | std::ios::binary);
-    if (!out_) throw InputError(part_.string() + ": cannot open for writing" + reason(errno));
+    if (!out_) throw InputError(part_.string() + ": cannot open for writing" + errno_text(errno));
     std::error_code ec;
     fs::remove(path_, ec);
     if (ec) throw InputError(path_.string() + ": cannot remove the old file: " + ec.message());
@@ -101,20 +96,27 @@ void AtomicAppendFile::append(const std::string& frame) {
     errno = 0;
     out_.write(frame.data(), static_cast<std::streamsize>(frame.size()));
     out_.flush();
-    if (!out_) throw InputError(part_.string() + ": write error" + reason(errno));
+    if (!out_) throw InputError(part_.string() + ": write error" + errno_text(errno));
 }
 
 void AtomicAppendFile::commit() {
     if (committed_) return;
     errno = 0;
     out_.close();
-    if (out_.fail()) throw InputError(part_.string() + ": write error" + reason(errno));
-    std::error_code ec;
-    fs::rename(part_, path_, ec);
-    if (ec)
-        throw InputError(path_.string() + ": cannot rename " + part_.string() + ": " +
-                         ec.message());
+    if (out_.fail()) throw InputError(part_.string() + ": write error" + errno_text(errno));
+    publish_part_file(part_, path_);
     committed_ = true;
+}
+
+std::string errno_text(int err) {
+    return err != 0 ? ": " + std::generic_category().message(err) : std::string{};
+}
+
+void publish_part_file(const fs::path& part, const fs::path& path) {
+    std::error_code ec;
+    fs::rename(part, path, ec);
+    if (ec)
+        throw InputError(path.string() + ": cannot rename " + part.string() + ": " + ec.message());
 }
 
 } // namespace pedesis

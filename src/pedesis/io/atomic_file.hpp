@@ -15,6 +15,12 @@ namespace pedesis {
 // POSIX, so `path` holds either the old contents or the complete new ones.
 // On failure the temporary is removed and an InputError naming `path` is thrown;
 // an InputError or RunError thrown by `body` itself passes through unchanged.
+// ": <strerror>" for a non-zero errno, "" otherwise: the tail of I/O error messages.
+std::string errno_text(int err);
+
+// Renames a finished ".part" file onto its final name; InputError naming both on failure.
+void publish_part_file(const std::filesystem::path& part, const std::filesystem::path& path);
+
 void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& body, bool binary = false);
 

@@ -1,6 +1,7 @@
 #include "pedesis/io/gsd_writer.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/io/atomic_file.hpp"
 
 #include <algorithm>
 #include <array>
@@ -68,10 +69,6 @@ constexpr std::array<const char*, chunk_count> chunk_names = {
     "particles/types",    "particles/typeid",         "particles/mass",     "particles/diameter",
     "particles/position", "particles/orientation",    "particles/velocity", "particles/image",
 };
-
-std::string reason(int err) {
-    return err != 0 ? ": " + std::generic_category().message(err) : std::string{};
-}
 
 template <class T> void put(std::string& b, T v) {
     static_assert(std::is_trivially_copyable_v<T>);
@@ -240,7 +237,7 @@ template <int D> GsdWriter<D>::GsdWriter(const fs::path& path) : path_(path), pa
     part_ += ".part";
     errno = 0;
     fd_ = ::open(part_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd_ < 0) throw InputError(part_.string() + ": cannot open for writing" + reason(errno));
+    if (fd_ < 0) throw InputError(part_.string() + ": cannot open for writing" + errno_text(errno));
     std::error_code ec;
     fs::remove(path_, ec);
     if (ec) {
@@ -275,7 +272,7 @@ template <int D> void GsdWriter<D>::write_at(std::uint64_t offset, const std::st
         const ssize_t w = ::pwrite(fd_, bytes.data() + done, bytes.size() - done,
                                    static_cast<off_t>(offset + done));
         if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) throw InputError(part_.string() + ": write error" + reason(errno));
+        if (w <= 0) throw InputError(part_.string() + ": write error" + errno_text(errno));
         done += static_cast<std::size_t>(w);
     }
 }
@@ -338,12 +335,8 @@ template <int D> void GsdWriter<D>::commit() {
     errno = 0;
     const int rc = ::close(fd_);
     fd_ = -1;
-    if (rc != 0) throw InputError(part_.string() + ": write error" + reason(errno));
-    std::error_code ec;
-    fs::rename(part_, path_, ec);
-    if (ec)
-        throw InputError(path_.string() + ": cannot rename " + part_.string() + ": " +
-                         ec.message());
+    if (rc != 0) throw InputError(part_.string() + ": write error" + errno_text(errno));
+    publish_part_file(part_, path_);
     committed_ = true;
 }
 
