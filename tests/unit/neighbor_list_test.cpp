@@ -1,5 +1,6 @@
 // NeighborList: the rows are exactly the brute-force pairs within r_list (periodic,
-// walled and mixed boxes, axes with 1, 2 and 3 cells, elongated boxes), the full list
+// walled and mixed boxes, axes with 1, 2 and 3 cells, elongated boxes, clusters,
+// positions just outside a periodic box), the full list
 // is symmetric, the rows do not depend on the thread count, needs_rebuild follows the
 // skin/2 rule without mistaking a periodic wrap for motion, buffers are reused, and bad
 // parameters are reported by name.
@@ -50,6 +51,26 @@ std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, std::uint
     return pos;
 }
 
+// Half the particles packed into a ball around the box corner (so that on periodic axes
+// the cluster straddles the boundary), as in a phase-separated active system: cells
+// with many particles next to nearly empty ones.
+template <int D>
+std::vector<Vec<D>> clustered_positions(const Box<D>& box, std::size_t n, double radius,
+                                        std::uint64_t seed) {
+    auto pos = random_positions(box, n, seed);
+    for (std::size_t i = n / 2; i < n; ++i) {
+        CounterRng rng(seed, RngStream::orientation, static_cast<std::uint32_t>(i));
+        Vec<D> d;
+        do {
+            for (int a = 0; a < D; ++a) d[a] = rng.uniform(-radius, radius);
+        } while (norm2(d) > radius * radius);
+        for (int a = 0; a < D; ++a)
+            pos[i][a] = box.periodic(a) ? box.lo(a) + d[a] : box.lo(a) + std::abs(d[a]);
+        box.wrap(pos[i]);
+    }
+    return pos;
+}
+
 // Ordered pairs (i, j), i != j, both ways round, sorted.
 template <int D> PairList brute_pairs(const Box<D>& box, const std::vector<Vec<D>>& pos, double r) {
     PairList s;
@@ -74,13 +95,13 @@ template <int D> struct Case {
     double r_cut, skin;
 };
 
-template <int D> void check_against_brute_force(const Case<D>& c, std::uint64_t seed) {
-    const Box<D> box(c.L, c.periodic);
-    const auto n = static_cast<std::size_t>(std::clamp(0.8 * box.volume(), 30.0, 1500.0));
-    const auto pos = random_positions(box, n, seed);
-    NeighborList<D> nl(box, c.r_cut, c.skin);
+template <int D>
+void check_against_brute_force(const Box<D>& box, const std::vector<Vec<D>>& pos, double r_cut,
+                               double skin) {
+    NeighborList<D> nl(box, r_cut, skin);
     nl.build(pos);
-    SCOPED_TRACE(describe(box, c.r_cut, c.skin));
+    SCOPED_TRACE(describe(box, r_cut, skin));
+    const std::size_t n = pos.size();
     ASSERT_EQ(nl.size(), n);
     ASSERT_EQ(nl.offsets().size(), n + 1);
     EXPECT_EQ(nl.offsets()[0], 0u);
@@ -91,6 +112,12 @@ template <int D> void check_against_brute_force(const Case<D>& c, std::uint64_t 
     const PairList expect = brute_pairs(box, pos, nl.r_list());
     EXPECT_GT(expect.size(), 0u) << "case too sparse to test anything";
     EXPECT_EQ(listed_pairs(nl), expect);
+}
+
+template <int D> void check_against_brute_force(const Case<D>& c, std::uint64_t seed) {
+    const Box<D> box(c.L, c.periodic);
+    const auto n = static_cast<std::size_t>(std::clamp(0.8 * box.volume(), 30.0, 1500.0));
+    check_against_brute_force(box, random_positions(box, n, seed), c.r_cut, c.skin);
 }
 
 TEST(NeighborList, MatchesBruteForce2D) {
@@ -126,6 +153,31 @@ TEST(NeighborList, MatchesBruteForce3D) {
         for (std::uint64_t seed : {21u, 22u}) check_against_brute_force(cases[k], 100 * k + seed);
 }
 
+TEST(NeighborList, MatchesBruteForceClustered) {
+    for (bool periodic : {true, false}) {
+        const Box<2> box2(Vec<2>{{30.0, 24.0}}, {periodic, true});
+        check_against_brute_force(box2, clustered_positions(box2, 1200, 3.0, 41), 2.0, 0.5);
+        const Box<3> box3(Vec<3>{{9.0, 7.0, 8.0}}, {periodic, true, !periodic});
+        check_against_brute_force(box3, clustered_positions(box3, 1000, 1.6, 42), 1.2, 0.3);
+    }
+}
+
+// Between wrapping and the next build a particle may sit a little outside a periodic
+// box; its cell and its minimum image must still come out right.
+TEST(NeighborList, MatchesBruteForceWithPositionsJustOutsideThePeriodicBox) {
+    const Box<2> box(Vec<2>{{20.0, 11.0}}, {true, true});
+    auto pos = random_positions(box, 600, 8);
+    std::size_t moved = 0;
+    for (auto& r : pos)
+        for (int a = 0; a < 2; ++a)
+            if (r[a] < box.lo(a) + 0.2 * box.length(a)) {
+                r[a] += box.length(a); // the same point of the torus, outside the box
+                ++moved;
+            }
+    ASSERT_GT(moved, 100u);
+    check_against_brute_force(box, pos, 2.0, 0.5);
+}
+
 TEST(NeighborList, FullListIsSymmetricWithoutSelfOrDuplicates) {
     const Box<2> box(Vec<2>{{30.0, 17.0}}, {true, false});
     const auto pos = random_positions(box, 900, 5);
@@ -151,31 +203,41 @@ TEST(NeighborList, FullListIsSymmetricWithoutSelfOrDuplicates) {
 }
 
 // Rows identical (content and order) with 1, 2 and 3 threads, so force sums are too.
-TEST(NeighborList, SameRowsWhateverTheThreadCount) {
+template <int D>
+void check_thread_independence(const Box<D>& box, const std::vector<Vec<D>>& pos, double r_cut,
+                               double skin) {
+    SCOPED_TRACE(describe(box, r_cut, skin));
     const int saved = omp_get_max_threads();
-    const double L = std::sqrt(20000 / 0.4);
-    for (bool periodic : {true, false}) {
-        const Box<2> box(Vec<2>{{L, L}}, {periodic, periodic});
-        const auto pos = random_positions(box, 20000, 77);
-        std::vector<std::size_t> off1;
-        std::vector<std::uint32_t> nb1;
-        for (int threads : {1, 2, 3}) {
-            omp_set_num_threads(threads);
-            NeighborList<2> nl(box, 2.0, 0.5);
-            nl.build(pos);
-            std::vector<std::size_t> off(nl.offsets().begin(), nl.offsets().end());
-            std::vector<std::uint32_t> nb(nl.neighbors().begin(), nl.neighbors().end());
-            if (threads == 1) {
-                off1 = off;
-                nb1 = nb;
-                EXPECT_GT(nb1.size(), 20000u);
-            } else {
-                EXPECT_EQ(off, off1) << threads << " threads, periodic " << periodic;
-                EXPECT_EQ(nb, nb1) << threads << " threads, periodic " << periodic;
-            }
+    std::vector<std::size_t> off1;
+    std::vector<std::uint32_t> nb1;
+    for (int threads : {1, 2, 3}) {
+        omp_set_num_threads(threads);
+        NeighborList<D> nl(box, r_cut, skin);
+        nl.build(pos);
+        std::vector<std::size_t> off(nl.offsets().begin(), nl.offsets().end());
+        std::vector<std::uint32_t> nb(nl.neighbors().begin(), nl.neighbors().end());
+        if (threads == 1) {
+            off1 = off;
+            nb1 = nb;
+            EXPECT_GT(nb1.size(), pos.size());
+        } else {
+            EXPECT_EQ(off, off1) << threads << " threads";
+            EXPECT_EQ(nb, nb1) << threads << " threads";
         }
     }
     omp_set_num_threads(saved);
+}
+
+TEST(NeighborList, SameRowsWhateverTheThreadCount) {
+    // large enough for build() to go parallel
+    const double L = std::sqrt(20000 / 0.4);
+    for (bool periodic : {true, false}) {
+        const Box<2> box(Vec<2>{{L, L}}, {periodic, periodic});
+        check_thread_independence(box, random_positions(box, 20000, 77), 2.0, 0.5);
+        check_thread_independence(box, clustered_positions(box, 20000, 40.0, 78), 2.0, 0.5);
+    }
+    const Box<3> box3(Vec<3>{{24.0, 24.0, 24.0}}, {true, true, false});
+    check_thread_independence(box3, random_positions(box3, 11000, 79), 1.2, 0.3);
 }
 
 TEST(NeighborList, NeedsRebuildAfterSkinHalf) {
@@ -346,6 +408,8 @@ TEST(NeighborList, BadPositionNamesTheParticle) {
             EXPECT_NE(std::string(e.what()).find("particle 13"), std::string::npos) << e.what();
         }
         EXPECT_TRUE(nl.needs_rebuild(p));
+        EXPECT_EQ(nl.size(), pos.size()) << "a failed build must leave the previous list";
+        EXPECT_EQ(nl.builds(), 1u);
     }
 }
 

@@ -27,7 +27,8 @@ template <int D> class NeighborList {
     NeighborList(const Box<D>& box, double r_cut, double skin);
 
     // Positions must be wrapped into the box on periodic axes (SoftState keeps them so);
-    // a non-finite or unwrapped position throws RunError naming the particle.
+    // a non-finite or unwrapped position throws RunError naming the particle and leaves
+    // the previous list as it was.
     void build(const std::vector<Vec<D>>& pos);
 
     // True when any particle has moved more than skin/2 since the last build (minimum
@@ -54,13 +55,6 @@ template <int D> class NeighborList {
     std::size_t memory_bytes() const;
 
   private:
-    // per thread: the particles around one cell, gathered contiguously; kept across
-    // builds so that a build allocates nothing once the sizes have settled
-    struct Scratch {
-        std::vector<Vec<D>> r;
-        std::vector<std::uint32_t> j, hit;
-    };
-
     Box<D> box_;
     double r_cut_, skin_, r_list_;
     CellList<D> cells_;
@@ -79,7 +73,6 @@ template <int D> class NeighborList {
     // the reference for needs_rebuild, so cell order costs only 4 bytes per particle.
     std::vector<std::uint32_t> cell_start_, by_cell_;
     std::vector<Vec<D>> ref_;
-    std::vector<Scratch> scratch_;
 };
 
 extern template class NeighborList<2>;
