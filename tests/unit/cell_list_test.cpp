@@ -12,36 +12,11 @@
 #include <utility>
 #include <vector>
 
+#include "support/random_positions.hpp"
+
 using namespace pedesis;
 
 namespace {
-
-template <int D> std::string describe(const Box<D>& box, double cutoff) {
-    std::string s = "L = (";
-    for (int a = 0; a < D; ++a)
-        s += std::to_string(box.length(a)) + (box.periodic(a) ? "p" : "w") +
-             (a + 1 < D ? ", " : ")");
-    return s + " cutoff " + std::to_string(cutoff);
-}
-
-template <int D>
-std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, std::uint64_t seed) {
-    std::vector<Vec<D>> pos(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        CounterRng rng(seed, RngStream::placement, static_cast<std::uint32_t>(i));
-        for (int a = 0; a < D; ++a) pos[i][a] = rng.uniform(box.lo(a), box.hi(a));
-        box.wrap(pos[i]);
-    }
-    // a few particles exactly on the boundaries (walls, or -L/2 on periodic axes)
-    for (std::size_t i = 0; i < std::min<std::size_t>(n, 4); ++i)
-        for (int a = 0; a < D; ++a) {
-            if (i % 2 == 0)
-                pos[i][a] = box.lo(a);
-            else if (!box.periodic(a))
-                pos[i][a] = box.hi(a);
-        }
-    return pos;
-}
 
 template <int D>
 std::set<std::pair<std::uint32_t, std::uint32_t>>
@@ -80,8 +55,8 @@ cell_pairs(const Box<D>& box, const CellList<D>& cells, const std::vector<Vec<D>
 
 template <int D>
 void check_box(const Box<D>& box, double cutoff, std::size_t n, std::uint64_t seed) {
-    SCOPED_TRACE(describe(box, cutoff));
-    auto pos = random_positions(box, n, seed);
+    SCOPED_TRACE(test::describe_box(box) + " cutoff " + std::to_string(cutoff));
+    auto pos = test::random_positions(box, n, seed, 4);
     CellList<D> cells(box, cutoff);
     for (int a = 0; a < D; ++a)
         EXPECT_GE(cells.cell_width(a), std::min(cutoff, box.length(a)) * (1 - 1e-12));

@@ -20,6 +20,8 @@
 #include <unistd.h>
 #include <vector>
 
+#include "support/soft_builder.hpp"
+
 using namespace pedesis;
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -176,21 +178,7 @@ template <int D> void advance(SoftState<D>& s, unsigned seed) {
         const Vec<D> shift = s.box.wrap(s.p.position[i]);
         for (int a = 0; a < D; ++a) s.image[i][a] += static_cast<std::int32_t>(shift[a]);
     }
-    std::vector<std::size_t> perm(s.size());
-    std::iota(perm.begin(), perm.end(), std::size_t{0});
-    std::shuffle(perm.begin(), perm.end(), gen);
-    SoftState<D> t = s;
-    for (std::size_t i = 0; i < perm.size(); ++i) {
-        t.p.position[i] = s.p.position[perm[i]];
-        t.p.velocity[i] = s.p.velocity[perm[i]];
-        t.p.tag[i] = s.p.tag[perm[i]];
-        t.p.species[i] = s.p.species[perm[i]];
-        t.director[i] = s.director[perm[i]];
-        t.force[i] = s.force[perm[i]];
-        t.torque[i] = s.torque[perm[i]];
-        t.image[i] = s.image[perm[i]];
-    }
-    s = t;
+    s = test::permuted_storage(s, gen);
     s.step += 1000;
     s.time += 0.5;
 }

@@ -18,6 +18,8 @@
 #include <unistd.h>
 #include <vector>
 
+#include "support/soft_builder.hpp"
+
 using namespace pedesis;
 namespace fs = std::filesystem;
 
@@ -236,22 +238,8 @@ TEST(io_vtp, StorageOrderDoesNotChangeTheDocument) {
     // Reordering storage (as the engines do) must not change the file.
     auto s = shuffled_state<3>(16, 3);
     const std::string before = vtp_document(s);
-    auto t = s;
     std::mt19937_64 gen(4);
-    std::vector<std::size_t> perm(s.size());
-    std::iota(perm.begin(), perm.end(), std::size_t{0});
-    std::shuffle(perm.begin(), perm.end(), gen);
-    for (std::size_t i = 0; i < perm.size(); ++i) {
-        t.p.position[i] = s.p.position[perm[i]];
-        t.p.velocity[i] = s.p.velocity[perm[i]];
-        t.p.tag[i] = s.p.tag[perm[i]];
-        t.p.species[i] = s.p.species[perm[i]];
-        t.director[i] = s.director[perm[i]];
-        t.force[i] = s.force[perm[i]];
-        t.torque[i] = s.torque[perm[i]];
-        t.image[i] = s.image[perm[i]];
-    }
-    EXPECT_EQ(vtp_document(t), before);
+    EXPECT_EQ(vtp_document(test::permuted_storage(s, gen)), before);
 }
 
 TEST(io_vtp, WriteVtpWritesTheDocumentAtomically) {

@@ -17,39 +17,13 @@
 #include <utility>
 #include <vector>
 
+#include "support/random_positions.hpp"
+
 using namespace pedesis;
 
 namespace {
 
 using PairList = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
-
-template <int D> std::string describe(const Box<D>& box, double r_cut, double skin) {
-    std::string s = "L = (";
-    for (int a = 0; a < D; ++a)
-        s += std::to_string(box.length(a)) + (box.periodic(a) ? "p" : "w") +
-             (a + 1 < D ? ", " : ")");
-    return s + " r_cut " + std::to_string(r_cut) + " skin " + std::to_string(skin);
-}
-
-template <int D>
-std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, std::uint64_t seed) {
-    std::vector<Vec<D>> pos(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        CounterRng rng(seed, RngStream::placement, static_cast<std::uint32_t>(i));
-        for (int a = 0; a < D; ++a) pos[i][a] = rng.uniform(box.lo(a), box.hi(a));
-        box.wrap(pos[i]);
-    }
-    // particles exactly on the boundaries (walls, or -L/2 on periodic axes), where cell
-    // assignment and minimum image are most fragile
-    for (std::size_t i = 0; i < std::min<std::size_t>(n, 6); ++i)
-        for (int a = 0; a < D; ++a) {
-            if (i % 2 == 0)
-                pos[i][a] = box.lo(a);
-            else if (!box.periodic(a))
-                pos[i][a] = box.hi(a);
-        }
-    return pos;
-}
 
 // Half the particles packed into a ball around the box corner (so that on periodic axes
 // the cluster straddles the boundary), as in a phase-separated active system: cells
@@ -57,7 +31,7 @@ std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, std::uint
 template <int D>
 std::vector<Vec<D>> clustered_positions(const Box<D>& box, std::size_t n, double radius,
                                         std::uint64_t seed) {
-    auto pos = random_positions(box, n, seed);
+    auto pos = test::random_positions(box, n, seed, 6);
     for (std::size_t i = n / 2; i < n; ++i) {
         CounterRng rng(seed, RngStream::orientation, static_cast<std::uint32_t>(i));
         Vec<D> d;
@@ -100,7 +74,8 @@ void check_against_brute_force(const Box<D>& box, const std::vector<Vec<D>>& pos
                                double skin) {
     NeighborList<D> nl(box, r_cut, skin);
     nl.build(pos);
-    SCOPED_TRACE(describe(box, r_cut, skin));
+    SCOPED_TRACE(test::describe_box(box) + " r_cut " + std::to_string(r_cut) + " skin " +
+                 std::to_string(skin));
     const std::size_t n = pos.size();
     ASSERT_EQ(nl.size(), n);
     ASSERT_EQ(nl.offsets().size(), n + 1);
@@ -117,7 +92,7 @@ void check_against_brute_force(const Box<D>& box, const std::vector<Vec<D>>& pos
 template <int D> void check_against_brute_force(const Case<D>& c, std::uint64_t seed) {
     const Box<D> box(c.L, c.periodic);
     const auto n = static_cast<std::size_t>(std::clamp(0.8 * box.volume(), 30.0, 1500.0));
-    check_against_brute_force(box, random_positions(box, n, seed), c.r_cut, c.skin);
+    check_against_brute_force(box, test::random_positions(box, n, seed, 6), c.r_cut, c.skin);
 }
 
 TEST(NeighborList, MatchesBruteForce2D) {
@@ -166,7 +141,7 @@ TEST(NeighborList, MatchesBruteForceClustered) {
 // box; its cell and its minimum image must still come out right.
 TEST(NeighborList, MatchesBruteForceWithPositionsJustOutsideThePeriodicBox) {
     const Box<2> box(Vec<2>{{20.0, 11.0}}, {true, true});
-    auto pos = random_positions(box, 600, 8);
+    auto pos = test::random_positions(box, 600, 8, 6);
     std::size_t moved = 0;
     for (auto& r : pos)
         for (int a = 0; a < 2; ++a)
@@ -180,7 +155,7 @@ TEST(NeighborList, MatchesBruteForceWithPositionsJustOutsideThePeriodicBox) {
 
 TEST(NeighborList, FullListIsSymmetricWithoutSelfOrDuplicates) {
     const Box<2> box(Vec<2>{{30.0, 17.0}}, {true, false});
-    const auto pos = random_positions(box, 900, 5);
+    const auto pos = test::random_positions(box, 900, 5, 6);
     NeighborList<2> nl(box, 2.0, 0.5);
     nl.build(pos);
     std::vector<std::vector<std::uint32_t>> rows(nl.size());
@@ -206,7 +181,8 @@ TEST(NeighborList, FullListIsSymmetricWithoutSelfOrDuplicates) {
 template <int D>
 void check_thread_independence(const Box<D>& box, const std::vector<Vec<D>>& pos, double r_cut,
                                double skin) {
-    SCOPED_TRACE(describe(box, r_cut, skin));
+    SCOPED_TRACE(test::describe_box(box) + " r_cut " + std::to_string(r_cut) + " skin " +
+                 std::to_string(skin));
     const int saved = omp_get_max_threads();
     std::vector<std::size_t> off1;
     std::vector<std::uint32_t> nb1;
@@ -233,17 +209,17 @@ TEST(NeighborList, SameRowsWhateverTheThreadCount) {
     const double L = std::sqrt(20000 / 0.4);
     for (bool periodic : {true, false}) {
         const Box<2> box(Vec<2>{{L, L}}, {periodic, periodic});
-        check_thread_independence(box, random_positions(box, 20000, 77), 2.0, 0.5);
+        check_thread_independence(box, test::random_positions(box, 20000, 77, 6), 2.0, 0.5);
         check_thread_independence(box, clustered_positions(box, 20000, 40.0, 78), 2.0, 0.5);
     }
     const Box<3> box3(Vec<3>{{24.0, 24.0, 24.0}}, {true, true, false});
-    check_thread_independence(box3, random_positions(box3, 11000, 79), 1.2, 0.3);
+    check_thread_independence(box3, test::random_positions(box3, 11000, 79, 6), 1.2, 0.3);
 }
 
 TEST(NeighborList, NeedsRebuildAfterSkinHalf) {
     const double skin = 0.4, half = 0.5 * skin;
     const Box<2> box(Vec<2>{{20.0, 20.0}}, {true, false});
-    auto pos = random_positions(box, 400, 9);
+    auto pos = test::random_positions(box, 400, 9, 6);
     NeighborList<2> nl(box, 2.0, skin);
     EXPECT_TRUE(nl.needs_rebuild(pos)) << "never built";
     nl.build(pos);
@@ -283,7 +259,7 @@ TEST(NeighborList, NeedsRebuildAfterSkinHalf) {
 TEST(NeighborList, PeriodicWrapIsNotMotion) {
     const double skin = 0.4, half = 0.5 * skin;
     const Box<2> box(Vec<2>{{20.0, 20.0}}, {true, true});
-    auto pos = random_positions(box, 100, 4);
+    auto pos = test::random_positions(box, 100, 4, 6);
     pos[0] = Vec<2>{{box.hi(0) - 0.05, 1.0}};  // about to leave through +x
     pos[1] = Vec<2>{{-3.0, box.lo(1) + 0.02}}; // about to leave through -y
     NeighborList<2> nl(box, 2.0, skin);
@@ -313,7 +289,7 @@ TEST(NeighborList, PeriodicWrapIsNotMotion) {
 
 TEST(NeighborList, ZeroSkinRebuildsOnAnyMotion) {
     const Box<2> box(Vec<2>{{10.0, 10.0}}, {true, true});
-    auto pos = random_positions(box, 50, 2);
+    auto pos = test::random_positions(box, 50, 2, 6);
     NeighborList<2> nl(box, 2.0, 0.0);
     nl.build(pos);
     EXPECT_FALSE(nl.needs_rebuild(pos));
@@ -325,7 +301,7 @@ TEST(NeighborList, CountsBuildsAndReusesBuffers) {
     const std::size_t n = 36000;
     const double L = std::sqrt(n / 0.4);
     const Box<2> box(Vec<2>{{L, L}}, {true, true});
-    auto pos = random_positions(box, n, 31);
+    auto pos = test::random_positions(box, n, 31, 6);
     NeighborList<2> nl(box, 2.0, 0.5);
     EXPECT_EQ(nl.builds(), 0u);
     nl.build(pos);
@@ -395,7 +371,7 @@ TEST(NeighborList, RejectsPeriodicBoxShorterThanTwiceRList) {
 
 TEST(NeighborList, BadPositionNamesTheParticle) {
     const Box<2> box(Vec<2>{{20.0, 20.0}}, {true, true});
-    auto pos = random_positions(box, 30, 1);
+    auto pos = test::random_positions(box, 30, 1, 6);
     NeighborList<2> nl(box, 2.0, 0.5);
     nl.build(pos);
     for (double x : {std::numeric_limits<double>::quiet_NaN(), 16.0}) {
