@@ -45,20 +45,11 @@ SoftState<D> random_soft_system(std::size_t n, double L, double radius = 1.0,
 // The same system with its storage reordered at random (tags travel with particles),
 // as an engine that sorts for locality would leave it.
 template <int D> SoftState<D> permuted_storage(const SoftState<D>& s, std::mt19937_64& gen) {
-    std::vector<std::size_t> perm(s.size());
-    std::iota(perm.begin(), perm.end(), std::size_t{0});
+    std::vector<std::uint32_t> perm(s.size());
+    std::iota(perm.begin(), perm.end(), std::uint32_t{0});
     std::shuffle(perm.begin(), perm.end(), gen);
     SoftState<D> t = s;
-    for (std::size_t i = 0; i < perm.size(); ++i) {
-        t.p.position[i] = s.p.position[perm[i]];
-        t.p.velocity[i] = s.p.velocity[perm[i]];
-        t.p.tag[i] = s.p.tag[perm[i]];
-        t.p.species[i] = s.p.species[perm[i]];
-        t.director[i] = s.director[perm[i]];
-        t.force[i] = s.force[perm[i]];
-        t.torque[i] = s.torque[perm[i]];
-        t.image[i] = s.image[perm[i]];
-    }
+    t.apply_order(perm);
     return t;
 }
 

@@ -7,6 +7,7 @@
 // (seed, stream, tag, s): the trajectory does not depend on thread count or storage order.
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
+#include "pedesis/soft/per_species.hpp"
 #include "pedesis/soft/plugins.hpp"
 #include "pedesis/soft/polar_align.hpp"
 
@@ -30,29 +31,61 @@ template <int D>
           << " (the neighbour-list skin); reduce dt";
     throw RunError(m.str());
 }
+
+inline void check_overdamped(const PerSpecies& T, const PerSpecies& gamma, const char* who) {
+    for (double t : T.values())
+        if (!(t >= 0.0 && std::isfinite(t)))
+            throw InputError(std::string(who) + ": T must be a finite number >= 0");
+    for (double g : gamma.values())
+        if (!(g > 0.0 && std::isfinite(g)))
+            throw InputError(std::string(who) + ": gamma must be a positive finite number");
+}
+
+// Per-species Euler-Maruyama coefficients for one step: drift dt / gamma and noise
+// amplitude sqrt(2 T dt / gamma).
+struct OverdampedCoefficients {
+    std::vector<double> drift, kick;
+    bool noisy = false;
+    void update(const PerSpecies& T, const PerSpecies& gamma, std::size_t n_species, double dt) {
+        drift.resize(n_species);
+        kick.resize(n_species);
+        noisy = false;
+        for (std::size_t s = 0; s < n_species; ++s) {
+            const double g = gamma.at(s, n_species);
+            drift[s] = dt / g;
+            kick[s] = std::sqrt(2.0 * T.at(s, n_species) * dt / g);
+            noisy = noisy || kick[s] > 0.0;
+        }
+    }
+};
 } // namespace detail
 
 template <int D> class BrownianIntegrator final : public Integrator<D> {
   public:
-    BrownianIntegrator(double T, double gamma, std::uint64_t seed)
-        : T_(T), gamma_(gamma), seed_(seed) {}
+    BrownianIntegrator(PerSpecies T, PerSpecies gamma, std::uint64_t seed)
+        : T_(std::move(T)), gamma_(std::move(gamma)), seed_(seed) {
+        detail::check_overdamped(T_, gamma_, "brownian");
+    }
     std::string name() const override { return "brownian"; }
-    double temperature() const { return T_; }
-    double gamma() const { return gamma_; }
+    const PerSpecies& temperature() const { return T_; }
+    const PerSpecies& gamma() const { return gamma_; }
 
     void poststep(SoftState<D>& s, double dt, double max_move) override {
-        const double drift = dt / gamma_;
-        const double kick = std::sqrt(2.0 * T_ * dt / gamma_);
+        c_.update(T_, gamma_, s.p.species_table.size(), dt);
+        const double* drift = c_.drift.data();
+        const double* kick = c_.kick.data();
+        const bool noisy = c_.noisy;
+        const std::uint16_t* sp = s.p.species.data();
         const auto n = static_cast<std::int64_t>(s.size());
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
 #pragma omp parallel for schedule(static) reduction(min : bad)
         for (std::int64_t i = 0; i < n; ++i) {
-            Vec<D> move = drift * s.force[i];
-            if (kick > 0.0) {
+            Vec<D> move = drift[sp[i]] * s.force[i];
+            if (noisy) {
                 CounterRng rng(seed_, RngStream::thermostat, s.p.tag[i], step);
-                for (int a = 0; a < D; ++a) move[a] += kick * rng.normal();
+                for (int a = 0; a < D; ++a) move[a] += kick[sp[i]] * rng.normal();
             }
             if (!(norm2(move) <= max2)) bad = std::min(bad, i);
             s.p.position[i] += move;
@@ -65,25 +98,34 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
     }
 
   private:
-    double T_, gamma_;
+    PerSpecies T_, gamma_;
     std::uint64_t seed_;
+    detail::OverdampedCoefficients c_;
 };
 
 template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
   public:
-    BrownianRotationIntegrator(double T, double gamma, std::uint64_t seed)
-        : T_(T), gamma_(gamma), seed_(seed) {}
+    BrownianRotationIntegrator(PerSpecies T, PerSpecies gamma, std::uint64_t seed)
+        : T_(std::move(T)), gamma_(std::move(gamma)), seed_(seed) {
+        detail::check_overdamped(T_, gamma_, "brownian_rotation");
+    }
     std::string name() const override { return "brownian_rotation"; }
-    double rotational_diffusion() const { return T_ / gamma_; }
+    // D_r = T / gamma of species s among n
+    double rotational_diffusion(std::size_t s = 0, std::size_t n = 1) const {
+        return T_.at(s, n) / gamma_.at(s, n);
+    }
 
     void poststep(SoftState<D>& s, double dt, double) override {
-        const double drift = dt / gamma_;
-        const double kick = std::sqrt(2.0 * T_ * dt / gamma_);
+        c_.update(T_, gamma_, s.p.species_table.size(), dt);
+        const double* drift_of = c_.drift.data();
+        const double* kick_of = c_.kick.data();
+        const std::uint16_t* sp = s.p.species.data();
         const auto n = static_cast<std::int64_t>(s.size());
         const auto step = static_cast<std::uint32_t>(s.step);
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i) {
             CounterRng rng(seed_, RngStream::orientation, s.p.tag[i], step);
+            const double drift = drift_of[sp[i]], kick = kick_of[sp[i]];
             Vec<D>& d = s.director[i];
             if constexpr (D == 2) {
                 double dtheta = drift * s.torque[i][0];
@@ -101,8 +143,9 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
     }
 
   private:
-    double T_, gamma_;
+    PerSpecies T_, gamma_;
     std::uint64_t seed_;
+    detail::OverdampedCoefficients c_;
 };
 
 } // namespace pedesis

@@ -1,6 +1,7 @@
 #include "pedesis/soft/evolver.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/soft/spatial_sort.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,29 +20,30 @@ Evolver<D>::Evolver(SoftState<D>& state, double skin, double r_cut)
 template <int D> void Evolver<D>::add_force(std::unique_ptr<ForceTerm<D>> f) {
     forces_.push_back(std::move(f));
     nl_.reset(); // the cutoff may have grown
+    forces_current_ = false;
 }
 
 template <int D> void Evolver<D>::add_torque(std::unique_ptr<TorqueTerm<D>> t) {
     torques_.push_back(std::move(t));
     nl_.reset();
+    forces_current_ = false;
 }
 
 template <int D> void Evolver<D>::add_integrator(std::unique_ptr<Integrator<D>> i) {
     integrators_.push_back(std::move(i));
 }
 
+template <int D> void Evolver<D>::make_list() {
+    double range = r_cut_request_;
+    for (const auto& f : forces_) range = std::max(range, f->range(s_));
+    for (const auto& t : torques_) range = std::max(range, t->range(s_));
+    if (range <= 0.0) range = 1e-3; // only one-body terms: an (almost) empty list
+    r_list_cut_ = range;
+    nl_ = std::make_unique<NeighborList<D>>(s_.box, range, skin_);
+}
+
 template <int D> void Evolver<D>::ensure_list() {
-    if (!nl_) {
-        double range = r_cut_request_;
-        for (const auto& f : forces_) range = std::max(range, f->range(s_));
-        for (const auto& t : torques_) range = std::max(range, t->range(s_));
-        if (range <= 0.0) range = 1e-3; // only one-body terms: an (almost) empty list
-        r_list_cut_ = range;
-        nl_ = std::make_unique<NeighborList<D>>(s_.box, range, skin_);
-        nl_->build(s_.p.position);
-        ++builds_;
-        return;
-    }
+    if (!nl_) make_list();
     if (nl_->needs_rebuild(s_.p.position)) {
         nl_->build(s_.p.position);
         ++builds_;
@@ -53,6 +55,17 @@ template <int D> const NeighborList<D>& Evolver<D>::neighbor_list() {
     return *nl_;
 }
 
+template <int D> std::vector<Vec<D>> Evolver<D>::list_reference() const {
+    return nl_ ? nl_->build_positions() : std::vector<Vec<D>>{};
+}
+
+template <int D>
+void Evolver<D>::restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds) {
+    make_list();
+    if (!reference.empty()) nl_->build(reference);
+    builds_ = builds;
+}
+
 template <int D> void Evolver<D>::wrap_all() {
     const auto n = static_cast<std::int64_t>(s_.size());
 #pragma omp parallel for schedule(static)
@@ -62,19 +75,35 @@ template <int D> void Evolver<D>::wrap_all() {
     }
 }
 
-template <int D> void Evolver<D>::evolve(double dt) {
-    if (!(dt > 0.0 && std::isfinite(dt))) throw InputError("dt must be a positive finite number");
-    if (!nl_) ensure_list();
-    // A step longer than the skin is a blow-up (tunnelling through neighbours), as in
-    // the tutorial's guidance on choosing the pad; with no skin, the cutoff is the scale.
-    const double max_move = skin_ > 0.0 ? skin_ : r_list_cut_;
-    for (auto& i : integrators_) i->prestep(s_, dt, max_move);
-    // checked after the pre-steps, so that velocity-Verlet drifts are covered too
+template <int D> void Evolver<D>::sort_particles() {
+    s_.apply_order(space_filling_order(s_.box, s_.p.position, s_.p.tag, r_list_cut_ + skin_));
+    // the rows hold storage indices: a fresh list, built from the reordered positions
+    nl_->build(s_.p.position);
+    ++builds_;
+}
+
+template <int D> void Evolver<D>::compute_forces() {
     ensure_list();
     std::fill(s_.force.begin(), s_.force.end(), Vec<D>{});
     std::fill(s_.torque.begin(), s_.torque.end(), TorqueVec<D>{});
     for (const auto& f : forces_) f->add_forces(s_, *nl_);
     for (const auto& t : torques_) t->add_torques(s_, *nl_);
+    forces_current_ = true;
+}
+
+template <int D> void Evolver<D>::evolve(double dt) {
+    if (!(dt > 0.0 && std::isfinite(dt))) throw InputError("dt must be a positive finite number");
+    if (!nl_) ensure_list();
+    if (sort_interval_ > 0 && s_.step > 0 && s_.step % sort_interval_ == 0) sort_particles();
+    if (!forces_current_ && std::any_of(integrators_.begin(), integrators_.end(),
+                                        [](const auto& i) { return i->needs_initial_forces(); }))
+        compute_forces();
+    // A step longer than the skin is a blow-up (tunnelling through neighbours), as in
+    // the tutorial's guidance on choosing the pad; with no skin, the cutoff is the scale.
+    const double max_move = skin_ > 0.0 ? skin_ : r_list_cut_;
+    for (auto& i : integrators_) i->prestep(s_, dt, max_move);
+    // checked after the pre-steps, so that velocity-Verlet drifts are covered too
+    compute_forces();
     for (auto& i : integrators_) i->poststep(s_, dt, max_move);
     wrap_all();
     ++s_.step;

@@ -25,6 +25,23 @@ template <int D> class Evolver {
         for (std::uint64_t k = 0; k < steps; ++k) evolve(dt);
     }
 
+    // Every `steps` steps (0: never) the storage is reordered along a space-filling curve
+    // for cache locality; outputs, which are in tag order, do not change.
+    void set_sort_interval(std::uint64_t steps) { sort_interval_ = steps; }
+    std::uint64_t sort_interval() const { return sort_interval_; }
+
+    // Forces and torques at the current positions, as if a step were starting (the
+    // velocity-Verlet pre-step needs them; evolve() calls this once by itself).
+    void compute_forces();
+    // The forces in the state are those of its positions (e.g. restored from a
+    // checkpoint): the first step must not recompute them.
+    void mark_forces_current() { forces_current_ = true; }
+
+    // What a checkpoint needs to continue bit for bit: the positions of the last list
+    // build (the list is rebuilt from them, giving the same rows) and the build count.
+    std::vector<Vec<D>> list_reference() const;
+    void restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds);
+
     // Energy and virial of the conservative pair forces at the current positions.
     PairTotals pair_totals();
     const NeighborList<D>& neighbor_list();
@@ -36,7 +53,9 @@ template <int D> class Evolver {
 
   private:
     void ensure_list();
+    void make_list();
     void wrap_all();
+    void sort_particles();
 
     SoftState<D>& s_;
     double skin_;
@@ -44,6 +63,8 @@ template <int D> class Evolver {
     double r_list_cut_ = 0.0;
     std::unique_ptr<NeighborList<D>> nl_;
     std::uint64_t builds_ = 0;
+    std::uint64_t sort_interval_ = 0;
+    bool forces_current_ = false;
     std::vector<std::unique_ptr<ForceTerm<D>>> forces_;
     std::vector<std::unique_ptr<TorqueTerm<D>>> torques_;
     std::vector<std::unique_ptr<Integrator<D>>> integrators_;

@@ -42,6 +42,9 @@ template <int D> class Integrator {
   public:
     virtual ~Integrator() = default;
     virtual std::string name() const = 0;
+    // True if the pre-step reads the forces of the current positions (velocity Verlet):
+    // the evolver then computes them once before the first step.
+    virtual bool needs_initial_forces() const { return false; }
     virtual void prestep(SoftState<D>&, double /*dt*/, double /*max_move*/) {}
     virtual void poststep(SoftState<D>&, double /*dt*/, double /*max_move*/) {}
 };

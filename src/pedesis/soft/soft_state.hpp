@@ -35,6 +35,23 @@ template <int D> struct SoftState {
         image.resize(n);
     }
 
+    // Reorders storage so that new index i holds the particle at old index order[i]; tags
+    // travel with the particles, so nothing a user sees changes.
+    void apply_order(const std::vector<std::uint32_t>& order) {
+        auto permute = [&](auto& v) {
+            auto old = v;
+            for (std::size_t i = 0; i < order.size(); ++i) v[i] = old[order[i]];
+        };
+        permute(p.position);
+        permute(p.velocity);
+        permute(p.tag);
+        permute(p.species);
+        permute(director);
+        permute(force);
+        permute(torque);
+        permute(image);
+    }
+
     Vec<D> unwrapped(std::size_t i) const {
         Vec<D> r = p.position[i];
         for (int a = 0; a < D; ++a) r[a] += image[i][a] * box.length(a);

@@ -47,6 +47,14 @@ template <int D> class NeighborList {
     std::span<const std::size_t> offsets() const { return {offsets_.data(), offsets_.size()}; }
     std::span<const std::uint32_t> neighbors() const { return {neighbors_.get(), entries_}; }
 
+    // The positions of the last build, in storage order: building again from them gives
+    // the same rows (a checkpoint restores the list this way).
+    std::vector<Vec<D>> build_positions() const {
+        std::vector<Vec<D>> r(n_);
+        for (std::size_t k = 0; k < n_; ++k) r[by_cell_[k]] = ref_[k];
+        return r;
+    }
+
     double r_cut() const { return r_cut_; }
     double skin() const { return skin_; }
     double r_list() const { return r_list_; }
