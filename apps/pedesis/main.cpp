@@ -1,5 +1,7 @@
-// pedesis command line: run, bench. Input errors exit with 2, stopped runs with 3.
+// pedesis command line: run, init, bench. Input errors exit with 2, stopped runs with 3.
+#include "bench_abp.hpp"
 #include "bench_event.hpp"
+#include "init_command.hpp"
 #include "run_command.hpp"
 
 #include "pedesis/core/error.hpp"
@@ -14,10 +16,12 @@ int main(int argc, char** argv) {
     CLI::App app{"pedesis: particle dynamics of gases and active matter"};
     app.require_subcommand(1);
     pedesis::cli::add_run_command(app);
+    pedesis::cli::add_init_command(app);
     auto* bench =
         app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");
     bench->require_subcommand(1);
     pedesis::cli::add_bench_event(*bench);
+    pedesis::cli::add_bench_abp(*bench);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
