@@ -1,5 +1,183 @@
 #include "bench_abp.hpp"
 
+#include "pedesis/core/error.hpp"
+#include "pedesis/core/rng.hpp"
+#include "pedesis/soft/brownian.hpp"
+#include "pedesis/soft/evolver.hpp"
+#include "pedesis/soft/pair_force.hpp"
+#include "pedesis/soft/pair_potentials.hpp"
+#include "pedesis/soft/polar_align.hpp"
+#include "pedesis/soft/self_propulsion.hpp"
+#include "pedesis/soft/spatial_sort.hpp"
+
+#include <fmt/core.h>
+#include <omp.h>
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+
 namespace pedesis::cli {
-void add_bench_abp(CLI::App&) {}
+
+namespace {
+
+struct BenchAbpOptions {
+    int dim = 2;
+    std::size_t n = 36000;
+    int threads = 1;
+    bool align = false;
+    std::uint64_t steps = 1000;
+    std::uint64_t warmup = 100;
+    std::uint64_t seed = 1;
+    double skin = 0.4;
+    std::uint64_t sort_interval = 200;
+};
+
+// The ABP tutorial's model (Session 2) with the parameters of issue 3.
+constexpr double density = 0.4;
+constexpr double radius = 1.0;
+constexpr double k_harmonic = 10.0, a_harmonic = 2.0;
+constexpr double alpha = 1.0, temperature = 0.1, gamma_friction = 1.0, dt = 0.01;
+constexpr double j_align = 1.0;
+
+template <int D> std::size_t state_bytes(const SoftState<D>& s) {
+    return s.p.position.capacity() * sizeof(Vec<D>) + s.p.velocity.capacity() * sizeof(Vec<D>) +
+           s.p.tag.capacity() * sizeof(std::uint32_t) +
+           s.p.species.capacity() * sizeof(std::uint16_t) +
+           s.director.capacity() * sizeof(Vec<D>) + s.force.capacity() * sizeof(Vec<D>) +
+           s.torque.capacity() * sizeof(TorqueVec<D>) + s.image.capacity() * sizeof(s.image[0]);
+}
+
+double max_rss_bytes() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return static_cast<double>(u.ru_maxrss) * 1024.0; // Linux reports kilobytes
+}
+
+// Uniform positions and directors drawn per tag (so the system does not depend on the
+// thread count), then stored along the space-filling curve: a run would otherwise spend
+// its first sort interval with every neighbour row pointing at random memory.
+template <int D> void build_system(SoftState<D>& s, const BenchAbpOptions& o, double L) {
+    std::array<bool, D> periodic;
+    periodic.fill(true);
+    s.box = Box<D>(Vec<D>::filled(L), periodic);
+    s.resize(o.n);
+    s.p.species_table = {Species{"A", radius, 1.0}};
+    const auto n = static_cast<std::int64_t>(o.n);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+        const auto tag = static_cast<std::uint32_t>(i);
+        CounterRng rng(o.seed, RngStream::placement, tag);
+        s.p.tag[i] = tag;
+        s.p.species[i] = 0;
+        for (int a = 0; a < D; ++a) s.p.position[i][a] = rng.uniform(-0.5 * L, 0.5 * L);
+        s.box.wrap(s.p.position[i]); // uniform() may return exactly 1
+        if constexpr (D == 2) {
+            const double theta = rng.uniform(0.0, 2.0 * std::numbers::pi);
+            s.director[i] = Vec<D>{{std::cos(theta), std::sin(theta)}};
+        } else {
+            Vec<D> d;
+            for (int a = 0; a < D; ++a) d[a] = rng.normal();
+            s.director[i] = d * (1.0 / norm(d));
+        }
+    }
+    s.apply_order(space_filling_order(s.box, s.p.position, s.p.tag, a_harmonic + o.skin));
+}
+
+template <int D> void run_bench(const BenchAbpOptions& o) {
+    if (o.n < 2) throw InputError("bench abp: --n must be at least 2");
+    if (o.n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+        throw InputError("bench abp: --n must be below 2^31");
+    if (o.threads < 1) throw InputError("bench abp: --threads must be at least 1");
+    if (o.steps < 1) throw InputError("bench abp: --steps must be at least 1");
+    if (!(o.skin > 0.0 && std::isfinite(o.skin)))
+        throw InputError("bench abp: --skin must be a positive finite number");
+    const double L = std::pow(static_cast<double>(o.n) / density, 1.0 / D);
+    const double r_list = a_harmonic + o.skin;
+    if (L < 2.0 * r_list)
+        throw InputError(fmt::format(
+            "bench abp: box side {:.4g} (N = {} at density {}) is too small for the list "
+            "cutoff {} + skin {}: the minimum image needs a side of at least {}; use a larger "
+            "--n (at least {:.0f}) or a smaller --skin",
+            L, o.n, density, a_harmonic, o.skin, 2.0 * r_list,
+            std::ceil(density * std::pow(2.0 * r_list, D))));
+    omp_set_num_threads(o.threads);
+
+    SoftState<D> s;
+    build_system(s, o, L);
+    Evolver<D> e(s, o.skin);
+    e.add_force(std::make_unique<PairForce<D, HarmonicPair>>(
+        "harmonic", HarmonicPair{k_harmonic, a_harmonic}));
+    e.add_force(std::make_unique<SelfPropulsion<D>>(alpha));
+    if (o.align) e.add_torque(std::make_unique<PolarAlign<D>>(j_align, a_harmonic));
+    e.add_integrator(
+        std::make_unique<BrownianIntegrator<D>>(temperature, gamma_friction, o.seed));
+    e.add_integrator(
+        std::make_unique<BrownianRotationIntegrator<D>>(temperature, gamma_friction, o.seed));
+    e.set_sort_interval(o.sort_interval);
+
+    fmt::print("bench abp: dim {} N {} density {} L {:.4f} threads {}\n", D, o.n, density, L,
+               o.threads);
+    fmt::print("model: harmonic k {} a {}, self-propulsion alpha {}, T {} (positions and "
+               "rotations), gamma {}, dt {}, alignment {}\n",
+               k_harmonic, a_harmonic, alpha, temperature, gamma_friction, dt,
+               o.align ? fmt::format("J {}", j_align) : std::string("off"));
+    fmt::print("skin {} sort_interval {} steps {} (after {} warm-up) seed {}\n", o.skin,
+               o.sort_interval, o.steps, o.warmup, o.seed);
+
+    e.run(o.warmup, dt);
+    const std::uint64_t builds0 = e.list_builds();
+    const auto t0 = std::chrono::steady_clock::now();
+    e.run(o.steps, dt);
+    const auto t1 = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(t1 - t0).count();
+    const std::uint64_t builds = e.list_builds() - builds0;
+
+    const auto& nl = e.neighbor_list();
+    const double nd = static_cast<double>(o.n);
+    const double particle_steps = nd * static_cast<double>(o.steps);
+    fmt::print("wall_seconds: {:.3f}  seconds_per_step: {:.4g}\n", seconds,
+               seconds / static_cast<double>(o.steps));
+    fmt::print("list_builds: {} (one every {:.1f} steps; space-filling-curve sorts included)  "
+               "neighbours_per_particle: {:.2f}\n",
+               builds,
+               builds ? static_cast<double>(o.steps) / static_cast<double>(builds)
+                      : std::numeric_limits<double>::infinity(),
+               static_cast<double>(nl.neighbors().size()) / nd);
+    const double state = static_cast<double>(state_bytes(s));
+    const double list = static_cast<double>(nl.memory_bytes());
+    fmt::print("state_bytes_per_particle: {:.1f}  neighbour_list_bytes_per_particle: {:.1f}  "
+               "max_rss_bytes_per_particle: {:.1f}\n",
+               state / nd, list / nd, max_rss_bytes() / nd);
+    fmt::print("particle_steps_per_second: {:.0f}\n", particle_steps / seconds);
+    fmt::print("bytes_per_particle: {:.1f}\n", (state + list) / nd);
+}
+
+} // namespace
+
+void add_bench_abp(CLI::App& bench) {
+    auto o = std::make_shared<BenchAbpOptions>();
+    auto* cmd = bench.add_subcommand(
+        "abp", "Particle-steps per second of the soft/active engine (the ABP tutorial's system)");
+    cmd->add_option("--n", o->n, "Number of particles (number density 0.4)");
+    cmd->add_option("--threads", o->threads, "OpenMP threads");
+    cmd->add_flag("--align", o->align, "Add polar alignment (J = 1, range 2)");
+    cmd->add_option("--dim", o->dim, "Dimension (2 or 3)")->check(CLI::IsMember({2, 3}));
+    cmd->add_option("--steps", o->steps, "Steps measured (after the warm-up)");
+    cmd->add_option("--warmup", o->warmup, "Steps run before measuring");
+    cmd->add_option("--seed", o->seed, "Random seed");
+    cmd->add_option("--skin", o->skin, "Neighbour-list skin");
+    cmd->add_option("--sort-interval", o->sort_interval,
+                    "Steps between space-filling-curve sorts (0: never)");
+    cmd->callback([o] {
+        if (o->dim == 2)
+            run_bench<2>(*o);
+        else
+            run_bench<3>(*o);
+    });
+}
+
 } // namespace pedesis::cli

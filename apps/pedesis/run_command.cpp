@@ -3,6 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/run_config.hpp"
 #include "pedesis/run/event_run.hpp"
+#include "pedesis/run/soft_run.hpp"
 
 #include <iostream>
 #include <memory>
@@ -33,7 +34,10 @@ void add_run_command(CLI::App& app) {
                         ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
                         : std::filesystem::path(a->out);
         if (!a->restart.empty()) o.restart = a->restart;
-        run_event_simulation(config, o, std::cout);
+        if (config.soft())
+            run_soft_simulation(config, o, std::cout);
+        else
+            run_event_simulation(config, o, std::cout);
     });
 }
 

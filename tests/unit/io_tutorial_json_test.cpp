@@ -19,6 +19,8 @@
 #include <unistd.h>
 #include <vector>
 
+#include "support/soft_builder.hpp"
+
 namespace fs = std::filesystem;
 using namespace pedesis;
 
@@ -353,4 +355,81 @@ TEST_F(io_tutorial_json, PythonInfinityLiteralGetsAHint) {
     const fs::path file = write(
         "python.json", R"({"system": {"particles": [{"id": 0, "r": [0, 0], "mass": Infinity}]}})");
     expect_input_error([&] { read_tutorial_json<2>(file); }, file, {":1:58: ", "\"inf\""});
+}
+
+namespace {
+
+// Storage index = tag; every per-particle vector differs, with awkward values.
+template <int D> SoftState<D> soft_state_with_everything(std::size_t n, unsigned seed) {
+    SoftState<D> s = test::random_soft_system<D>(n, 9.0, 1.0, seed, 1.0);
+    s.p.species_table = {Species{"A", 1.0, 1.0}, Species{"B", 0.7, 2.0 / 3.0}};
+    std::mt19937_64 gen(seed);
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        s.p.species[i] = static_cast<std::uint16_t>(i % 2);
+        for (int a = 0; a < D; ++a) {
+            s.p.velocity[i][a] = awkward(gen, k++);
+            s.force[i][a] = awkward(gen, k++);
+        }
+    }
+    s.time = 7.0 / 3.0;
+    return s;
+}
+
+template <int D> void expect_soft_round_trip(const fs::path& file) {
+    const SoftState<D> s = soft_state_with_everything<D>(30, 40 + D);
+    std::mt19937_64 gen(D);
+    const SoftState<D> shuffled = test::permuted_storage(s, gen);
+    ASSERT_NE(shuffled.p.tag, s.p.tag) << "the test needs storage order != tag order";
+    const nlohmann::json doc = to_tutorial_json(shuffled);
+    write_file_atomically(file, [&](std::ostream& out) { out << doc.dump(); });
+
+    const ParticleFile<D> f = read_tutorial_json<D>(file);
+    ASSERT_TRUE(f.box.has_value());
+    for (int a = 0; a < D; ++a) EXPECT_EQ(bits((*f.box)[a]), bits(s.box.length(a)));
+    ASSERT_EQ(f.particles.size(), s.size());
+    const auto& written = doc.at("system").at("particles");
+    for (std::size_t tag = 0; tag < f.particles.size(); ++tag) {
+        SCOPED_TRACE("tag " + std::to_string(tag));
+        const FileParticle<D>& q = f.particles[tag];
+        EXPECT_EQ(q.id, tag) << "particles are written in tag order";
+        ASSERT_TRUE(q.v.has_value());
+        ASSERT_TRUE(q.n.has_value());
+        EXPECT_EQ(q.type, s.p.species[tag]);
+        EXPECT_EQ(q.radius, s.p.radius(tag));
+        EXPECT_EQ(q.mass, s.p.mass(tag));
+        // The reader has no use for "f"; it is checked in the document itself.
+        const auto& force = written[tag].at("f");
+        ASSERT_EQ(force.size(), static_cast<std::size_t>(D));
+        for (int a = 0; a < D; ++a) {
+            EXPECT_EQ(bits(q.r[a]), bits(s.p.position[tag][a])) << "axis " << a;
+            EXPECT_EQ(bits((*q.v)[a]), bits(s.p.velocity[tag][a])) << "axis " << a;
+            EXPECT_EQ(bits((*q.n)[a]), bits(s.director[tag][a])) << "axis " << a;
+            EXPECT_EQ(bits(force[static_cast<std::size_t>(a)].get<double>()), bits(s.force[tag][a]))
+                << "axis " << a;
+        }
+    }
+}
+
+} // namespace
+
+TEST_F(io_tutorial_json, SoftStateRoundTripIsBitExactIn2D) {
+    expect_soft_round_trip<2>(dir / "soft2.json");
+}
+TEST_F(io_tutorial_json, SoftStateRoundTripIsBitExactIn3D) {
+    expect_soft_round_trip<3>(dir / "soft3.json");
+}
+
+TEST_F(io_tutorial_json, SoftStateDocumentIsTheStoreDocumentPlusDirectorAndForce) {
+    const SoftState<2> s = soft_state_with_everything<2>(6, 9);
+    std::mt19937_64 gen(1);
+    const SoftState<2> shuffled = test::permuted_storage(s, gen);
+    nlohmann::json soft = to_tutorial_json(shuffled);
+    for (auto& q : soft.at("system").at("particles")) {
+        EXPECT_EQ(q.at("n").size(), 2u);
+        EXPECT_EQ(q.at("f").size(), 2u);
+        q.erase("n");
+        q.erase("f");
+    }
+    EXPECT_EQ(soft, to_tutorial_json(shuffled.p, shuffled.box, shuffled.time));
 }

@@ -16,6 +16,7 @@ enum class RngStream : std::uint32_t {
     velocity = 2,
     orientation = 3,
     thermostat = 4,
+    initial_director = 5,
 };
 
 class CounterRng {

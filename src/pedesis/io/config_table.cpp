@@ -31,6 +31,17 @@ bool ConfigTable::has(const std::string& key) const {
     return table_->contains(key);
 }
 
+bool ConfigTable::is_table(const std::string& key) const {
+    const toml::node* n = table_->get(key);
+    return n && n->is_table();
+}
+
+std::vector<std::string> ConfigTable::keys() const {
+    std::vector<std::string> out;
+    for (const auto& [k, v] : *table_) out.emplace_back(k.str());
+    return out;
+}
+
 const toml::node* ConfigTable::node(const std::string& key) {
     used_.insert(key);
     return table_->get(key);

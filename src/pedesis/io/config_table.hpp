@@ -17,6 +17,8 @@ class ConfigTable {
     ConfigTable(const toml::table& table, std::string file, std::string prefix = "");
 
     bool has(const std::string& key) const;
+    bool is_table(const std::string& key) const;
+    std::vector<std::string> keys() const; // every key of the table, in file order
 
     std::optional<double> number(const std::string& key, bool allow_inf = false);
     double number(const std::string& key, double fallback);

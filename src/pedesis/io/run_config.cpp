@@ -2,7 +2,9 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/config_table.hpp"
+#include "pedesis/soft/plugin_registry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -49,7 +51,11 @@ void read_velocity_keys(ConfigTable& t, SpeciesConfig& s, std::size_t d) {
 
 void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults) {
     auto list = root.tables("species");
-    if (list.empty()) throw InputError(c.file + ": no [[species]] given");
+    if (list.empty()) {
+        // a soft run may take its species from the initial file's particle types
+        if (c.soft() && c.initial_file) return;
+        throw InputError(c.file + ": no [[species]] given");
+    }
     const auto d = static_cast<std::size_t>(c.dimension);
     std::set<std::string> names;
     for (auto& t : list) {
@@ -102,45 +108,36 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
     }
 }
 
-} // namespace
-
-RunConfig load_run_config(const std::string& path) {
-    const toml::table doc = parse_toml_file(path);
-    ConfigTable root(doc, path);
-    RunConfig c;
-    c.file = path;
-    const auto dim = root.integer("dimension").value_or(2);
-    if (dim != 2 && dim != 3) throw InputError(root.where("dimension") + ": must be 2 or 3");
-    c.dimension = static_cast<int>(dim);
-    c.dynamics = root.string("dynamics").value_or("event");
-    if (c.dynamics != "event")
-        throw InputError(root.where("dynamics") + ": '" + c.dynamics +
-                         "' is not available (this build has: event)");
-    if (auto s = root.integer("seed")) {
-        if (*s < 0) throw InputError(root.where("seed") + ": must be >= 0");
-        c.seed = static_cast<std::uint64_t>(*s);
+std::vector<std::string> read_formats(const toml::table& doc, ConfigTable& out,
+                                      const std::vector<std::string>& allowed) {
+    const toml::node* n = doc["output"]["formats"].node();
+    const auto* arr = n ? n->as_array() : nullptr;
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+    if (!arr) throw InputError(out.where("formats") + ": expected a list such as [" + list + "]");
+    std::vector<std::string> formats;
+    for (std::size_t k = 0; k < arr->size(); ++k) {
+        auto s = (*arr)[k].value_exact<std::string>();
+        if (!s || std::find(allowed.begin(), allowed.end(), *s) == allowed.end())
+            throw InputError(out.where("formats") + ": each entry must be one of " + list);
+        formats.push_back(*s);
     }
-    read_box(root, c);
+    out.strings("formats", arr->size()); // marks the key as read
+    return formats;
+}
 
-    SpeciesConfig defaults;
-    defaults.positions = "random";
-    defaults.velocities = "maxwell_boltzmann";
-    if (auto init = root.table("initial")) {
-        if (auto p = init->string("positions")) defaults.positions = *p;
-        read_velocity_keys(*init, defaults, static_cast<std::size_t>(c.dimension));
-        if (defaults.velocity) defaults.velocities = "given";
-        if (auto f = init->string("file")) {
-            std::filesystem::path p(*f);
-            if (p.is_relative()) p = std::filesystem::path(path).parent_path() / p;
-            c.initial_file = p.string();
-            defaults.positions = "file";
-        }
-        c.zero_momentum = init->boolean("zero_momentum").value_or(true);
-        c.min_distance = init->number("min_distance", 0.0);
-        init->finish();
-    }
-    read_species(root, c, defaults);
+std::uint64_t read_count(ConfigTable& t, const std::string& key, std::uint64_t fallback,
+                         bool positive) {
+    const auto v = t.integer(key);
+    if (!v) return fallback;
+    if (*v < 0 || (positive && *v == 0))
+        throw InputError(t.where(key) +
+                         (positive ? ": must be a positive integer" : ": must be an integer >= 0"));
+    return static_cast<std::uint64_t>(*v);
+}
 
+// [event], [run] and [output] of the event-driven engine (times in simulation units).
+void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c) {
     if (auto ev = root.table("event")) {
         c.restitution = ev->number("restitution", 1.0);
         c.wall_restitution = ev->number("wall_restitution", 1.0);
@@ -160,7 +157,8 @@ RunConfig load_run_config(const std::string& path) {
     auto run = root.table("run");
     if (!run)
         throw InputError(
-            path + ": missing [run] table (give time, collisions_per_particle or energy_fraction)");
+            c.file +
+            ": missing [run] table (give time, collisions_per_particle or energy_fraction)");
     c.stop_time = run->number("time");
     c.stop_collisions_per_particle = run->number("collisions_per_particle");
     c.stop_energy_fraction = run->number("energy_fraction");
@@ -172,7 +170,8 @@ RunConfig load_run_config(const std::string& path) {
         throw InputError(run->where("energy_fraction") + ": must lie in (0, 1)");
     if (!c.stop_time && !c.stop_collisions_per_particle && !c.stop_energy_fraction)
         throw InputError(
-            path + ": [run] needs at least one of time, collisions_per_particle, energy_fraction");
+            c.file +
+            ": [run] needs at least one of time, collisions_per_particle, energy_fraction");
     run->finish();
 
     if (c.stop_energy_fraction && !c.stop_time && !c.stop_collisions_per_particle &&
@@ -189,22 +188,7 @@ RunConfig load_run_config(const std::string& path) {
         c.snapshot_interval = out->number("snapshot_interval", 0.0);
         if (c.snapshot_interval < 0)
             throw InputError(out->where("snapshot_interval") + ": must be >= 0");
-        if (out->has("formats")) {
-            const toml::node* n = doc["output"]["formats"].node();
-            const auto* arr = n ? n->as_array() : nullptr;
-            c.formats.clear();
-            if (!arr)
-                throw InputError(out->where("formats") +
-                                 ": expected a list such as [\"xyz\", \"json\"]");
-            for (std::size_t k = 0; k < arr->size(); ++k) {
-                auto s = (*arr)[k].value_exact<std::string>();
-                if (!s || (*s != "xyz" && *s != "json"))
-                    throw InputError(out->where("formats") +
-                                     ": each entry must be \"xyz\" or \"json\"");
-                c.formats.push_back(*s);
-            }
-            out->strings("formats", arr->size()); // marks the key as read
-        }
+        if (out->has("formats")) c.formats = read_formats(doc, *out, {"xyz", "json"});
         if (auto b = out->integer("histogram_bins")) {
             if (*b < 1 || *b > 100000)
                 throw InputError(out->where("histogram_bins") + ": must lie in [1, 100000]");
@@ -217,6 +201,117 @@ RunConfig load_run_config(const std::string& path) {
         c.progress = out->boolean("progress").value_or(true);
         out->finish();
     }
+}
+
+// [neighbor_list], [[force]], [[torque]], [[integrator]], [run] and [output] of the soft
+// engines (intervals in steps).
+void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c) {
+    if (auto nl = root.table("neighbor_list")) {
+        c.list_r_cut = nl->number("r_cut", 0.0);
+        if (nl->has("r_cut") && !(c.list_r_cut > 0))
+            throw InputError(nl->where("r_cut") + ": must be positive");
+        if (nl->has("pad") && nl->has("skin"))
+            throw InputError(nl->where("pad") + ": give skin or pad (the same thing), not both");
+        const std::string skin_key = nl->has("pad") ? "pad" : "skin";
+        c.list_skin = nl->number(skin_key, c.list_skin);
+        if (!(c.list_skin > 0)) throw InputError(nl->where(skin_key) + ": must be positive");
+        c.sort_every = read_count(*nl, "sort_every", c.sort_every, false);
+        nl->finish();
+    }
+    for (auto& t : root.tables("force")) c.forces.push_back(read_plugin(t, PluginKind::force));
+    for (auto& t : root.tables("torque")) c.torques.push_back(read_plugin(t, PluginKind::torque));
+    for (auto& t : root.tables("integrator"))
+        c.integrators.push_back(read_plugin(t, PluginKind::integrator));
+
+    // exactly one integrator moves the positions, and it is the one `dynamics` names
+    std::vector<std::string> movers;
+    bool rotates = false;
+    for (const auto& i : c.integrators) {
+        if (i.name == "brownian_rotation") {
+            if (rotates) throw InputError(i.where + ": a second brownian_rotation integrator");
+            rotates = true;
+        } else {
+            movers.push_back(i.name);
+            if (movers.size() > 1)
+                throw InputError(i.where + ": a second position integrator ('" + movers[0] +
+                                 "' is already there); give exactly one");
+        }
+    }
+    if (movers.empty())
+        throw InputError(c.file + ": dynamics = \"" + c.dynamics +
+                         "\" needs an [[integrator]] "
+                         "with name = \"" +
+                         c.dynamics + "\"");
+    if (movers[0] != c.dynamics)
+        throw InputError(root.where("dynamics") + ": is '" + c.dynamics +
+                         "' but the position integrator is '" + movers[0] + "'");
+    if (!c.torques.empty() && !rotates)
+        throw InputError(c.torques[0].where + ": a torque turns nothing without a "
+                                              "brownian_rotation integrator");
+
+    auto run = root.table("run");
+    if (!run) throw InputError(c.file + ": missing [run] table (give steps and dt)");
+    c.steps = read_count(*run, "steps", 0, true);
+    if (!run->has("steps")) throw InputError(run->where("steps") + ": is required");
+    c.dt = run->required_number("dt");
+    if (!(c.dt > 0)) throw InputError(run->where("dt") + ": must be positive");
+    run->finish();
+
+    c.formats = {"vtp", "gsd"};
+    if (auto out = root.table("output")) {
+        c.log_every = read_count(*out, "log_every", c.log_every, true);
+        c.snapshot_every = read_count(*out, "snapshot_every", 0, false);
+        c.checkpoint_every = read_count(*out, "checkpoint_every", 0, false);
+        if (out->has("formats"))
+            c.formats = read_formats(doc, *out, {"vtp", "gsd", "json", "xyz", "table"});
+        c.progress = out->boolean("progress").value_or(true);
+        out->finish();
+    }
+}
+
+} // namespace
+
+RunConfig load_run_config(const std::string& path) {
+    const toml::table doc = parse_toml_file(path);
+    ConfigTable root(doc, path);
+    RunConfig c;
+    c.file = path;
+    const auto dim = root.integer("dimension").value_or(2);
+    if (dim != 2 && dim != 3) throw InputError(root.where("dimension") + ": must be 2 or 3");
+    c.dimension = static_cast<int>(dim);
+    c.dynamics = root.string("dynamics").value_or("event");
+    if (c.dynamics != "event" && c.dynamics != "brownian" && c.dynamics != "langevin" &&
+        c.dynamics != "nve")
+        throw InputError(root.where("dynamics") + ": '" + c.dynamics +
+                         "' is not available (this build has: event, brownian, langevin, nve)");
+    if (auto s = root.integer("seed")) {
+        if (*s < 0) throw InputError(root.where("seed") + ": must be >= 0");
+        c.seed = static_cast<std::uint64_t>(*s);
+    }
+
+    SpeciesConfig defaults;
+    defaults.positions = "random";
+    defaults.velocities = c.soft() ? "zero" : "maxwell_boltzmann";
+    if (auto init = root.table("initial")) {
+        if (auto p = init->string("positions")) defaults.positions = *p;
+        read_velocity_keys(*init, defaults, static_cast<std::size_t>(c.dimension));
+        if (defaults.velocity) defaults.velocities = "given";
+        if (auto f = init->string("file")) {
+            std::filesystem::path p(*f);
+            if (p.is_relative()) p = std::filesystem::path(path).parent_path() / p;
+            c.initial_file = p.string();
+            defaults.positions = "file";
+        }
+        c.zero_momentum = init->boolean("zero_momentum").value_or(true);
+        c.min_distance = init->number("min_distance", 0.0);
+        init->finish();
+    }
+    if (root.has("box") || !(c.soft() && c.initial_file)) read_box(root, c);
+    read_species(root, c, defaults);
+    if (c.soft())
+        read_soft_sections(doc, root, c);
+    else
+        read_event_sections(doc, root, c);
     root.finish();
     return c;
 }

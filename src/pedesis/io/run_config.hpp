@@ -1,6 +1,8 @@
 #pragma once
 // The contents of a run's TOML config, validated. Every key is documented in
 // docs/config.md; unknown keys are errors.
+#include "pedesis/soft/plugin_spec.hpp"
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -26,10 +28,11 @@ struct SpeciesConfig {
 struct RunConfig {
     std::string file; // where it came from, for messages
     int dimension = 2;
-    std::string dynamics = "event";
+    std::string dynamics = "event"; // event | brownian | langevin | nve
+    bool soft() const { return dynamics != "event"; }
     std::uint64_t seed = 1;
 
-    std::vector<double> box_lengths;
+    std::vector<double> box_lengths; // soft engines: may be empty (box from the initial file)
     std::vector<bool> periodic;
 
     std::vector<SpeciesConfig> species;
@@ -58,6 +61,17 @@ struct RunConfig {
     std::optional<double> histogram_start; // unset: histogram of the final state only
     double checkpoint_interval = 0.0;      // 0: only at the end
     bool progress = true;
+
+    // soft / active engines (dynamics = brownian, langevin or nve)
+    std::vector<PluginSpec> forces, torques, integrators;
+    double list_r_cut = 0.0; // 0: the largest interaction range
+    double list_skin = 0.5;
+    std::uint64_t sort_every = 500; // steps between space-filling-curve sorts (0: never)
+    std::uint64_t steps = 0;
+    double dt = 0.0;
+    std::uint64_t log_every = 100;
+    std::uint64_t snapshot_every = 0;   // 0: first and last frame only
+    std::uint64_t checkpoint_every = 0; // 0: only at the end
 };
 
 RunConfig load_run_config(const std::string& path);

@@ -33,6 +33,31 @@ template <int D> json vec_value(const Vec<D>& v) {
     return a;
 }
 
+template <int D> json particle_value(const ParticleStore<D>& p, std::uint32_t i) {
+    json q = json::object();
+    q["id"] = p.tag[i];
+    q["type"] = p.species[i];
+    q["r"] = vec_value(p.position[i]);
+    q["v"] = vec_value(p.velocity[i]);
+    q["radius"] = p.radius(i);
+    q["mass"] = mass_value(p.mass(i));
+    return q;
+}
+
+template <int D> json document(const Box<D>& box, double time, json particles) {
+    static constexpr const char* names[] = {"Lx", "Ly", "Lz"};
+    json box_json = json::object();
+    for (int a = 0; a < D; ++a) box_json[names[a]] = box.length(a);
+
+    json system = json::object();
+    system["time"] = time;
+    system["box"] = std::move(box_json);
+    system["particles"] = std::move(particles);
+    json doc = json::object();
+    doc["system"] = std::move(system);
+    return doc;
+}
+
 // ---- reading ----
 
 // Where a value sits in the file, so that every message can point at it.
@@ -221,29 +246,20 @@ FileParticle<D> read_particle(const json& j, std::size_t index, const std::strin
 
 template <int D>
 nlohmann::json to_tutorial_json(const ParticleStore<D>& p, const Box<D>& box, double time) {
-    static constexpr const char* names[] = {"Lx", "Ly", "Lz"};
-    json box_json = json::object();
-    for (int a = 0; a < D; ++a) box_json[names[a]] = box.length(a);
-
     json particles = json::array();
-    for (std::uint32_t i : p.index_of_tags()) {
-        json q = json::object();
-        q["id"] = p.tag[i];
-        q["type"] = p.species[i];
-        q["r"] = vec_value(p.position[i]);
-        q["v"] = vec_value(p.velocity[i]);
-        q["radius"] = p.radius(i);
-        q["mass"] = mass_value(p.mass(i));
+    for (std::uint32_t i : p.index_of_tags()) particles.push_back(particle_value(p, i));
+    return document(box, time, std::move(particles));
+}
+
+template <int D> nlohmann::json to_tutorial_json(const SoftState<D>& s) {
+    json particles = json::array();
+    for (std::uint32_t i : s.p.index_of_tags()) {
+        json q = particle_value(s.p, i);
+        q["n"] = vec_value(s.director[i]);
+        q["f"] = vec_value(s.force[i]);
         particles.push_back(std::move(q));
     }
-
-    json system = json::object();
-    system["time"] = time;
-    system["box"] = std::move(box_json);
-    system["particles"] = std::move(particles);
-    json doc = json::object();
-    doc["system"] = std::move(system);
-    return doc;
+    return document(s.box, s.time, std::move(particles));
 }
 
 template <int D> ParticleFile<D> read_tutorial_json(const fs::path& path) {
@@ -279,6 +295,8 @@ template <int D> ParticleFile<D> read_tutorial_json(const fs::path& path) {
 
 template nlohmann::json to_tutorial_json(const ParticleStore<2>&, const Box<2>&, double);
 template nlohmann::json to_tutorial_json(const ParticleStore<3>&, const Box<3>&, double);
+template nlohmann::json to_tutorial_json(const SoftState<2>&);
+template nlohmann::json to_tutorial_json(const SoftState<3>&);
 template ParticleFile<2> read_tutorial_json(const fs::path&);
 template ParticleFile<3> read_tutorial_json(const fs::path&);
 

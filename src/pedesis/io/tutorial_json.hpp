@@ -5,11 +5,13 @@
 //   {"system": {"time": t, "box": {"Lx": .., "Ly": .. [, "Lz": ..]},
 //               "particles": [{"id": 0, "type": 0, "r": [..], "v": [..],
 //                              "radius": .., "mass": .. or "inf"}, ...]}}
-// Vectors have D components. Keys the tutorial writes that pedesis has no use
-// for (e.g. the force "f") are ignored on reading.
+// Soft/active states add the director "n" and the force "f" per particle, as the
+// tutorial's own dump does. Vectors have D components. Keys that pedesis has no use
+// for on reading (e.g. the force "f") are ignored.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/core/vec.hpp"
+#include "pedesis/soft/soft_state.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -24,6 +26,11 @@ namespace pedesis {
 // round-trip precision, so reading the document back gives identical values.
 template <int D>
 nlohmann::json to_tutorial_json(const ParticleStore<D>& p, const Box<D>& box, double time);
+
+// The same document for a soft/active state, each particle with its director "n"
+// and the force "f" of the last step beside "v": what the tutorial's pymd reads as
+// an initial configuration (it takes "n", "v" and "f" when present).
+template <int D> nlohmann::json to_tutorial_json(const SoftState<D>& s);
 
 // One particle as the file gives it; what the file leaves out stays empty and is
 // for the caller to fill from its own defaults.

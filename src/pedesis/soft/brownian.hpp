@@ -7,31 +7,17 @@
 // (seed, stream, tag, s): the trajectory does not depend on thread count or storage order.
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
+#include "pedesis/soft/blow_up.hpp"
 #include "pedesis/soft/per_species.hpp"
 #include "pedesis/soft/plugins.hpp"
 #include "pedesis/soft/polar_align.hpp"
 
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace pedesis {
 
 namespace detail {
-// Lowest storage index whose move was not finite or exceeded max_move; the caller throws.
-template <int D>
-[[noreturn]] inline void throw_bad_move(const SoftState<D>& s, std::size_t i, const Vec<D>& move,
-                                        double max_move, const std::string& who) {
-    std::ostringstream m;
-    m << who << ": at step " << s.step << " particle " << s.p.tag[i];
-    if (!all_finite(move))
-        m << " got a non-finite displacement (the run blew up)";
-    else
-        m << " moved " << norm(move) << " in one step, more than " << max_move
-          << " (the neighbour-list skin); reduce dt";
-    throw RunError(m.str());
-}
-
 inline void check_overdamped(const PerSpecies& T, const PerSpecies& gamma, const char* who) {
     for (double t : T.values())
         if (!(t >= 0.0 && std::isfinite(t)))

@@ -1,0 +1,129 @@
+#include "pedesis/run/soft_checkpoint.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/io/atomic_file.hpp"
+#include "pedesis/io/binary_stream.hpp"
+
+#include <fstream>
+
+namespace pedesis {
+
+namespace {
+
+constexpr std::uint64_t soft_checkpoint_magic = 0x31544653444550ull; // "PEDSFT1"
+
+// The state's arrays in checkpoint order; one list serves saving and loading.
+template <class State, class F> void for_each_array(State& s, F&& f) {
+    f(s.p.position);
+    f(s.p.velocity);
+    f(s.p.tag);
+    f(s.p.species);
+    f(s.director);
+    f(s.force);
+    f(s.torque);
+    f(s.image);
+}
+
+} // namespace
+
+template <int D>
+void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>& s,
+                          const Evolver<D>& evolver, const SoftRunBook<D>& book) {
+    write_file_atomically(
+        path,
+        [&](std::ostream& out) {
+            binary::put(out, soft_checkpoint_magic);
+            binary::put(out, std::int32_t{D});
+            binary::put(out, s.box);
+            binary::put<std::uint64_t>(out, s.p.species_table.size());
+            for (const auto& sp : s.p.species_table) {
+                binary::put(out, sp.name);
+                binary::put(out, sp.radius);
+                binary::put(out, sp.mass);
+            }
+            binary::put(out, s.step);
+            binary::put(out, s.time);
+            for_each_array(s, [&](const auto& v) { binary::put(out, v); });
+            binary::put(out, evolver.list_reference());
+            binary::put(out, evolver.list_builds());
+            binary::put(out, book.start);
+            binary::put(out, book.frames);
+            binary::put(out, book.samples);
+            binary::put(out, book.sum_pressure);
+            binary::put(out, book.sum_polar_order);
+        },
+        true);
+}
+
+template <int D>
+void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c, SoftState<D>& s,
+                          Evolver<D>& evolver, SoftRunBook<D>& book) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string() + ": cannot open checkpoint");
+    try {
+        std::uint64_t magic = 0;
+        binary::get(in, magic);
+        if (magic != soft_checkpoint_magic)
+            throw InputError("not a checkpoint of a soft-engine (brownian, langevin, nve) run");
+        std::int32_t dim = 0;
+        binary::get(in, dim);
+        if (dim != D) throw InputError("written by a " + std::to_string(dim) + "D run");
+        binary::get(in, s.box);
+        std::uint64_t n_species = 0;
+        binary::get(in, n_species);
+        if (n_species > 65536) throw InputError("file is corrupt");
+        s.p.species_table.resize(n_species);
+        for (auto& sp : s.p.species_table) {
+            binary::get(in, sp.name);
+            binary::get(in, sp.radius);
+            binary::get(in, sp.mass);
+        }
+        binary::get(in, s.step);
+        binary::get(in, s.time);
+        for_each_array(s, [&](auto& v) { binary::get(in, v); });
+        std::vector<Vec<D>> reference;
+        std::uint64_t builds = 0;
+        binary::get(in, reference);
+        binary::get(in, builds);
+        binary::get(in, book.start);
+        binary::get(in, book.frames);
+        binary::get(in, book.samples);
+        binary::get(in, book.sum_pressure);
+        binary::get(in, book.sum_polar_order);
+        const std::size_t n = s.p.position.size();
+        if (s.p.velocity.size() != n || s.p.tag.size() != n || s.p.species.size() != n ||
+            s.director.size() != n || s.force.size() != n || s.torque.size() != n ||
+            s.image.size() != n || book.start.size() != n ||
+            (!reference.empty() && reference.size() != n))
+            throw InputError("file is corrupt (array lengths differ)");
+
+        if (!c.species.empty()) {
+            if (c.species.size() != n_species) throw InputError("species do not match " + c.file);
+            for (std::size_t k = 0; k < n_species; ++k)
+                if (s.p.species_table[k].name != c.species[k].name ||
+                    s.p.species_table[k].radius != c.species[k].radius ||
+                    !(s.p.species_table[k].mass == c.species[k].mass))
+                    throw InputError("species '" + s.p.species_table[k].name + "' does not match " +
+                                     c.file);
+        }
+        if (!c.box_lengths.empty())
+            for (int a = 0; a < D; ++a)
+                if (s.box.length(a) != c.box_lengths[static_cast<std::size_t>(a)])
+                    throw InputError("box does not match " + c.file);
+        evolver.restore_list(reference, builds);
+        evolver.mark_forces_current();
+    } catch (const InputError& err) {
+        throw InputError(path.string() + ": " + err.what());
+    }
+}
+
+template void save_soft_checkpoint<2>(const std::filesystem::path&, const SoftState<2>&,
+                                      const Evolver<2>&, const SoftRunBook<2>&);
+template void save_soft_checkpoint<3>(const std::filesystem::path&, const SoftState<3>&,
+                                      const Evolver<3>&, const SoftRunBook<3>&);
+template void load_soft_checkpoint<2>(const std::filesystem::path&, const RunConfig&, SoftState<2>&,
+                                      Evolver<2>&, SoftRunBook<2>&);
+template void load_soft_checkpoint<3>(const std::filesystem::path&, const RunConfig&, SoftState<3>&,
+                                      Evolver<3>&, SoftRunBook<3>&);
+
+} // namespace pedesis

@@ -1,0 +1,145 @@
+#include "pedesis/setup/build_soft_state.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/core/rng.hpp"
+#include "pedesis/io/tutorial_json.hpp"
+#include "pedesis/setup/build_system.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pedesis {
+
+namespace {
+
+template <int D> std::string particle_label(const std::string& file, std::uint32_t id) {
+    return fmt::format("{}: particle {}", file, id);
+}
+
+// Checks what only a soft run needs of the file: ids 0..N-1 (they become the tags, and
+// outputs are written in tag order), and positions inside the box.
+template <int D>
+void check_file(const ParticleFile<D>& f, const Box<D>& box, const std::string& name) {
+    const std::size_t n = f.particles.size();
+    std::vector<bool> seen(n, false);
+    for (const auto& fp : f.particles) {
+        if (fp.id >= n)
+            throw InputError(
+                fmt::format("{}: particle ids must be 0..{} (one per particle), but one is {}",
+                            name, n - 1, fp.id));
+        seen[fp.id] = true;
+    }
+    for (const auto& fp : f.particles)
+        for (int a = 0; a < D; ++a) {
+            const double half = 0.5 * box.length(a);
+            if (!(fp.r[a] >= -half && fp.r[a] <= half))
+                throw InputError(fmt::format(
+                    "{}: \"r\" component {} is {}, outside the box [{}, {}] (the box is "
+                    "centred at the origin)",
+                    particle_label<D>(name, fp.id), a, fp.r[a], -half, half));
+        }
+}
+
+template <int D> Vec<D> random_unit_vector(std::uint64_t seed, std::uint32_t tag) {
+    CounterRng rng(seed, RngStream::initial_director, tag);
+    Vec<D> v;
+    double len2 = 0.0;
+    do {
+        for (int a = 0; a < D; ++a) v[a] = rng.normal();
+        len2 = norm2(v);
+    } while (len2 < 1e-24);
+    return v * (1.0 / std::sqrt(len2));
+}
+
+} // namespace
+
+template <int D> RunConfig complete_from_initial_file(const RunConfig& config) {
+    RunConfig c = config;
+    if (!c.initial_file || (!c.box_lengths.empty() && !c.species.empty())) return c;
+    const ParticleFile<D> f = read_tutorial_json<D>(*c.initial_file);
+    if (c.box_lengths.empty()) {
+        if (!f.box)
+            throw InputError(*c.initial_file + ": has no \"box\", and " + c.file +
+                             " has no [box] either");
+        c.box_lengths.clear();
+        for (int a = 0; a < D; ++a) c.box_lengths.push_back((*f.box)[a]);
+        c.periodic.assign(D, true);
+    }
+    if (c.species.empty()) {
+        int types = 0;
+        for (const auto& fp : f.particles) {
+            if (fp.type < 0 || fp.type >= 26)
+                throw InputError(particle_label<D>(*c.initial_file, fp.id) +
+                                 ": \"type\" must lie in 0..25 when " + c.file +
+                                 " names no [[species]]");
+            types = std::max(types, fp.type + 1);
+        }
+        c.species.resize(static_cast<std::size_t>(types));
+        std::vector<bool> set(c.species.size(), false);
+        for (std::size_t s = 0; s < c.species.size(); ++s) {
+            c.species[s].name = std::string(1, static_cast<char>('A' + s));
+            c.species[s].positions = "file";
+            c.species[s].velocities = "zero";
+            c.species[s].radius = 1.0; // the tutorial's particles have unit radius
+        }
+        for (const auto& fp : f.particles) {
+            auto& s = c.species[static_cast<std::size_t>(fp.type)];
+            const double r = fp.radius.value_or(1.0), m = fp.mass.value_or(1.0);
+            if (!set[static_cast<std::size_t>(fp.type)]) {
+                s.radius = r;
+                s.mass = m;
+                set[static_cast<std::size_t>(fp.type)] = true;
+            } else if (r != s.radius || !(m == s.mass))
+                throw InputError(fmt::format(
+                    "{}: radius {} and mass {} differ from those of the first particle of type "
+                    "{} ({} and {}); give [[species]] in {} to say which is meant",
+                    particle_label<D>(*c.initial_file, fp.id), r, m, fp.type, s.radius, s.mass,
+                    c.file));
+        }
+    }
+    return c;
+}
+
+template <int D> SoftState<D> build_soft_state(const RunConfig& config) {
+    const RunConfig c = complete_from_initial_file<D>(config);
+    SoftState<D> s;
+    s.box = build_box<D>(c);
+    std::vector<std::optional<Vec<D>>> file_director;
+    if (c.initial_file) {
+        const ParticleFile<D> f = read_tutorial_json<D>(*c.initial_file);
+        check_file(f, s.box, *c.initial_file);
+        file_director.resize(f.particles.size());
+        for (const auto& fp : f.particles) {
+            if (fp.n && !(norm(*fp.n) > 0.0))
+                throw InputError(particle_label<D>(*c.initial_file, fp.id) +
+                                 ": \"n\" is the zero vector; a director needs a direction");
+            file_director[fp.id] = fp.n;
+        }
+    }
+    s.p = build_particles<D>(c, s.box); // tags follow the file's ids
+    const std::size_t n = s.p.size();
+    s.director.resize(n);
+    s.force.assign(n, Vec<D>{});
+    s.torque.assign(n, TorqueVec<D>{});
+    s.image.assign(n, std::array<std::int32_t, D>{});
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t tag = s.p.tag[i];
+        if (tag < file_director.size() && file_director[tag])
+            s.director[i] = *file_director[tag] * (1.0 / norm(*file_director[tag]));
+        else
+            s.director[i] = random_unit_vector<D>(c.seed, tag);
+        // a particle exactly on the upper face belongs to the lower one
+        const Vec<D> shift = s.box.wrap(s.p.position[i]);
+        for (int a = 0; a < D; ++a) s.image[i][a] = static_cast<std::int32_t>(shift[a]);
+    }
+    return s;
+}
+
+template RunConfig complete_from_initial_file<2>(const RunConfig&);
+template RunConfig complete_from_initial_file<3>(const RunConfig&);
+template SoftState<2> build_soft_state<2>(const RunConfig&);
+template SoftState<3> build_soft_state<3>(const RunConfig&);
+
+} // namespace pedesis
