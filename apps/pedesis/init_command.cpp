@@ -66,7 +66,8 @@ std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, const Ini
     std::vector<Vec<D>> pos;
     pos.reserve(n);
     if (o.rcut == 0.0) {
-        // Nothing to avoid; these are the draws place_randomly would accept first.
+        // Nothing to avoid, and a zero distance would ask the cell list for zero-width
+        // cells; these are the draws place_randomly would accept first.
         for (std::size_t k = 0; k < n; ++k) {
             CounterRng rng(o.seed, RngStream::placement, static_cast<std::uint32_t>(k));
             Vec<D> r;
@@ -106,16 +107,16 @@ std::vector<Vec<D>> random_positions(const Box<D>& box, std::size_t n, const Ini
 // and directors are independent without a stream of their own.
 template <int D> Vec<D> random_director(std::uint64_t seed, std::uint32_t tag) {
     CounterRng rng(seed, RngStream::placement, tag, 1);
-    const double phi = 2.0 * std::numbers::pi * rng.uniform();
+    const double angle = 2.0 * std::numbers::pi * rng.uniform();
     Vec<D> n;
     if constexpr (D == 2) {
-        n[0] = std::cos(phi);
-        n[1] = std::sin(phi);
+        n[0] = std::cos(angle);
+        n[1] = std::sin(angle);
     } else {
         const double z = rng.uniform(-1.0, 1.0);
         const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
-        n[0] = s * std::cos(phi);
-        n[1] = s * std::sin(phi);
+        n[0] = s * std::cos(angle);
+        n[1] = s * std::sin(angle);
         n[2] = z;
     }
     return n;

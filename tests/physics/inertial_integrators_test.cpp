@@ -6,6 +6,7 @@
 #include "support/soft_builder.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/rng.hpp"
 #include "pedesis/setup/velocities.hpp"
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/langevin.hpp"
@@ -49,10 +50,67 @@ template <int D> double kinetic_energy(const SoftState<D>& s) {
 }
 
 // Harmonic disks / spheres of radius 0.5 (contact at 1) placed at random, so that many
-// pairs overlap, with Maxwell-Boltzmann velocities at T = 1.
+// pairs overlap, with Maxwell-Boltzmann velocities at T = 1 (for the tests that do not
+// measure energy conservation; see compressed_lattice).
 template <int D> SoftState<D> dense_harmonic_system(std::size_t n, double fraction, int seed) {
     auto s = test::random_soft_system<D>(n, box_side<D>(n, 0.5, fraction), 0.5, seed);
     maxwell_velocities(s, 1.0, seed);
+    return s;
+}
+
+// A simple-cubic (square in 2D) lattice of side^D particles of radius 0.5 at spacing
+// 0.85, so that every particle overlaps its 2 D nearest neighbours by about 0.15
+// (jitter up to 0.085 per axis), with Maxwell-Boltzmann velocities at T = 0.3.
+//
+// The energy tests use this rather than a random placement: harmonic disks that meet
+// head on with a relative kinetic energy above k a^2 / 2 = 5 pass through each other,
+// and at r = 0 the force k (a - r) r_hat flips direction, a discontinuity that costs
+// velocity Verlet an O(dt) energy error instead of O(dt^2). At T = 1 from random
+// overlaps such passes happen a few times per run and dominate the energy record. At
+// T = 0.3 a pass needs |v_rel|^2 > 20 against a mean of 2 d T = 1.2 (2D) or 1.8 (3D):
+// a probability per collision of ~1e-7.
+template <int D> SoftState<D> compressed_lattice(int side, std::uint64_t seed) {
+    const double spacing = 0.85, L = side * spacing;
+    SoftState<D> s;
+    std::array<bool, D> periodic;
+    periodic.fill(true);
+    s.box = Box<D>(Vec<D>::filled(L), periodic);
+    std::size_t n = 1;
+    for (int a = 0; a < D; ++a) n *= static_cast<std::size_t>(side);
+    s.resize(n);
+    s.p.species_table = {Species{"A", 0.5, 1.0}};
+    for (std::size_t i = 0; i < n; ++i) {
+        CounterRng rng(seed, RngStream::placement, static_cast<std::uint32_t>(i));
+        std::size_t cell = i;
+        for (int a = 0; a < D; ++a) {
+            const double x = static_cast<double>(cell % side) + 0.5 + rng.uniform(-0.1, 0.1);
+            s.p.position[i][a] = -0.5 * L + x * spacing;
+            cell /= side;
+        }
+        s.p.tag[i] = static_cast<std::uint32_t>(i);
+        s.director[i][0] = 1.0;
+    }
+    maxwell_velocities(s, 0.3, seed);
+    return s;
+}
+
+// Free particles at uniform random positions in a periodic box (placed without the
+// support builder's O(N^2) overlap scan, which would dominate these large, force-free
+// runs).
+template <int D> SoftState<D> free_particles(std::size_t n, std::uint64_t seed) {
+    const double L = D == 2 ? 200.0 : 40.0;
+    SoftState<D> s;
+    std::array<bool, D> periodic;
+    periodic.fill(true);
+    s.box = Box<D>(Vec<D>::filled(L), periodic);
+    s.resize(n);
+    s.p.species_table = {Species{"A", 0.5, 1.0}};
+    for (std::size_t i = 0; i < n; ++i) {
+        CounterRng rng(seed, RngStream::placement, static_cast<std::uint32_t>(i));
+        for (int a = 0; a < D; ++a) s.p.position[i][a] = rng.uniform(-0.5 * L, 0.5 * L);
+        s.p.tag[i] = static_cast<std::uint32_t>(i);
+        s.director[i][0] = 1.0;
+    }
     return s;
 }
 
@@ -67,66 +125,67 @@ template <int D> void add_harmonic(Evolver<D>& e) {
 // Velocity Verlet
 
 struct EnergyRecord {
-    double fluctuation; // standard deviation of E(t) / |E(0)|
-    double drift;       // |E(end) - E(0)| / |E(0)|
-    double max_error;   // max |E(t) - E(0)| / |E(0)|
-    double pair_share;  // pair energy / total energy at the start
+    double max_error;  // max |E(t) - E(0)| / |E(0)| over the samples
+    double drift;      // |E(end) - E(0)| / |E(0)|
+    double increment;  // rms of E(t + 0.1) - E(t), over |E(0)|
+    double pair_share; // pair energy / total energy at the start
 };
 
+// Energy of the compressed lattice sampled every 0.1 time units over t_run.
 template <int D> EnergyRecord nve_energy(double dt, double t_run) {
-    auto s = dense_harmonic_system<D>(D == 2 ? 500 : 400, D == 2 ? 0.9 : 0.6, 3);
+    auto s = compressed_lattice<D>(D == 2 ? 16 : 7, 3);
     Evolver<D> e(s, 0.3);
     add_harmonic(e);
     e.add_integrator(std::make_unique<VelocityVerletIntegrator<D>>());
     const double pair0 = e.pair_totals().energy;
     const double e0 = kinetic_energy(s) + pair0;
     const auto steps = static_cast<std::uint64_t>(std::llround(t_run / dt));
-    const std::uint64_t every = steps / 400; // 400 samples whatever dt
-    double sum = 0.0, sum2 = 0.0, max_error = 0.0, last = e0;
+    const auto every = static_cast<std::uint64_t>(std::llround(0.1 / dt));
+    double max_error = 0.0, last = e0, sum2 = 0.0;
     int samples = 0;
     for (std::uint64_t done = 0; done < steps; done += every) {
         e.run(every, dt);
-        last = kinetic_energy(s) + e.pair_totals().energy;
-        sum += last;
-        sum2 += last * last;
-        max_error = std::max(max_error, std::abs(last - e0));
+        const double now = kinetic_energy(s) + e.pair_totals().energy;
+        sum2 += (now - last) * (now - last);
+        last = now;
+        max_error = std::max(max_error, std::abs(now - e0));
         ++samples;
     }
-    const double mean = sum / samples;
-    const double var = std::max(0.0, sum2 / samples - mean * mean);
-    return {std::sqrt(var) / std::abs(e0), std::abs(last - e0) / std::abs(e0),
-            max_error / std::abs(e0), pair0 / e0};
+    const double scale = std::abs(e0);
+    return {max_error / scale, std::abs(last - e0) / scale, std::sqrt(sum2 / samples) / scale,
+            pair0 / e0};
 }
 
 // Energy is conserved to well below 1e-3 and its error scales as dt^2.
 //
-// Why these bounds are fair: velocity Verlet is symplectic, so it conserves a shadow
-// Hamiltonian H + O(dt^2) and E(t) - E(0) oscillates with an amplitude of order
-// (omega dt)^2 / 24 per stiff contact, where omega = sqrt(2 k / m) = 4.5 here; at dt =
-// 0.005 that is ~2e-5 of a contact's energy. The harmonic force has a kink at contact,
-// which adds a small random-walk error per contact event, but over t = 20 (4000 steps,
-// about 15 oscillation periods of a contact) it stays well below the bound 2e-4 (5x
-// under the brief's 1e-3). The dt^2 scaling: the fluctuation is measured over the same
-// physical time from 400 samples at both step sizes, so sampling noise on the ratio is a
-// few per cent; the band [3, 5.3] around 4 allows for the kink's O(dt^3) contribution
-// and for the two runs' different chaotic trajectories.
+// Why these bounds are fair. Velocity Verlet is symplectic: with smooth forces it
+// conserves a shadow Hamiltonian H + O(dt^2), so E(t) - E(0) oscillates with an
+// amplitude ~ (omega dt)^2 / 24 of the contact energy, omega = sqrt(2 k / m) = 4.5. The
+// harmonic force has a kink at contact, where the trapezoidal impulse of the step is off
+// by up to k v dt^2 / 8; these errors have random signs and add up as a random walk, still
+// O(dt^2) per event, so E(t) - E(0) grows like sqrt(t) but scales as dt^2. Measured on
+// five seeds (t = 20, i.e. 4000 steps at dt = 0.005): max |E - E(0)| / E <= 4.3e-5 at
+// dt = 0.005 and <= 1.7e-4 at dt = 0.01; the bounds 1e-4 and 5e-4 leave 2-3x margin and
+// both are well below 1e-3.
+// The dt^2 scaling is read from the rms energy change over 0.1 time units, averaged over
+// the 200 intervals of the run: unlike the maximum or the end-point drift of one random
+// walk, that average is not dominated by a few events. Over five seeds the ratio between
+// dt = 0.01 and dt = 0.005 was 3.6-4.1 (2D and 3D); the band [3.2, 4.8] is 4 +- 20%.
 template <int D> void check_nve_energy() {
     const double t_run = 20.0;
     const auto coarse = nve_energy<D>(0.01, t_run);
     const auto fine = nve_energy<D>(0.005, t_run);
-    std::printf("nve %dD: pair share %.3f; dt 0.01: fluct %.3e drift %.3e max %.3e; "
-                "dt 0.005: fluct %.3e drift %.3e max %.3e; ratio %.3f\n",
-                D, coarse.pair_share, coarse.fluctuation, coarse.drift, coarse.max_error,
-                fine.fluctuation, fine.drift, fine.max_error,
-                coarse.fluctuation / fine.fluctuation);
+    const double ratio = coarse.increment / fine.increment;
+    std::printf("nve %dD (pair share %.2f): dt 0.01: max %.2e drift %.2e rms step %.2e; "
+                "dt 0.005: max %.2e drift %.2e rms step %.2e; ratio %.2f\n",
+                D, coarse.pair_share, coarse.max_error, coarse.drift, coarse.increment,
+                fine.max_error, fine.drift, fine.increment, ratio);
     // dense enough that the pair energy matters (otherwise this would test free flight)
-    EXPECT_GT(coarse.pair_share, 0.1);
-    EXPECT_LT(fine.max_error, 2e-4);
-    EXPECT_LT(fine.drift, 2e-4);
-    EXPECT_LT(coarse.max_error, 1e-3);
-    const double ratio = coarse.fluctuation / fine.fluctuation;
-    EXPECT_GT(ratio, 3.0);
-    EXPECT_LT(ratio, 5.3);
+    EXPECT_GT(coarse.pair_share, 0.3);
+    EXPECT_LT(fine.max_error, 1e-4);
+    EXPECT_LT(coarse.max_error, 5e-4);
+    EXPECT_GT(ratio, 3.2);
+    EXPECT_LT(ratio, 4.8);
 }
 
 TEST(VelocityVerlet, EnergyConservedWithDtSquaredError2D) {
@@ -140,16 +199,16 @@ TEST(VelocityVerlet, EnergyConservedWithDtSquaredError3D) {
 //
 // Tolerance 1e-9: velocity Verlet is exactly reversible in exact arithmetic, so only
 // rounding (1e-16 per operation) remains, amplified by the chaos of the dense system
-// as e^{lambda t}. Over t = 2.5 (500 steps) with lambda of order 1 that is ~1e-14, far
-// below 1e-9; a scheme that is not reversible (e.g. forces from the old positions in the
-// post-step) misses by ~(omega dt)^2 = 1e-3.
+// as e^{lambda t}. Over t = 5 (1000 steps) with lambda of order 1 that stays orders of
+// magnitude below 1e-9 (measured: 2e-12 to 1e-11); a scheme that is not reversible (e.g.
+// a post-step kick with the forces of the old positions) misses by ~(omega dt)^2 = 5e-4.
 template <int D> void check_reversibility() {
-    auto s = dense_harmonic_system<D>(D == 2 ? 500 : 400, D == 2 ? 0.9 : 0.6, 5);
+    auto s = compressed_lattice<D>(D == 2 ? 16 : 7, 5);
     const auto start = s;
     Evolver<D> e(s, 0.3);
     add_harmonic(e);
     e.add_integrator(std::make_unique<VelocityVerletIntegrator<D>>());
-    const std::uint64_t k = 500;
+    const std::uint64_t k = 1000;
     const double dt = 0.005;
     e.run(k, dt);
     double moved = 0.0;
@@ -164,7 +223,7 @@ template <int D> void check_reversibility() {
     }
     std::printf("nve %dD reversal after %llu steps: max |dr| %.3e, |dv| %.3e (moved up to %.2f)\n",
                 D, static_cast<unsigned long long>(k), dr, dv, moved);
-    EXPECT_GT(moved, 1.0); // the run went somewhere
+    EXPECT_GT(moved, 0.5); // the run went somewhere
     EXPECT_LT(dr, 1e-9);
     EXPECT_LT(dv, 1e-9);
 }
@@ -280,11 +339,6 @@ TEST(Langevin, RejectsBadParameters) {
     EXPECT_EQ(VelocityVerletIntegrator<3>().name(), "nve");
 }
 
-// Free particles in a periodic box of side L (no forces): only the thermostat acts.
-template <int D> SoftState<D> free_particles(std::size_t n, std::uint64_t seed) {
-    return test::random_soft_system<D>(n, D == 2 ? 200.0 : 40.0, 0.5, seed);
-}
-
 struct SpeciesTemperatures {
     double T[2] = {0.0, 0.0};
 };
@@ -313,16 +367,17 @@ SpeciesTemperatures measure_temperatures(Evolver<D>& e, SoftState<D>& s, std::ui
 //
 // Tolerance 2%. BAOAB's O step is the exact Ornstein-Uhlenbeck update and B is idle
 // without forces, so the stationary velocity distribution is exactly N(0, T/m) for any
-// dt: only statistics and the memory of the cold start remain. After 10 relaxation
-// times (tau = m / gamma = 2) the start is forgotten to e^{-20}. Each snapshot has
-// N D = 8000 (2D) or 12000 (3D) independent components, m v_a^2 / T ~ chi^2_1 with
-// relative variance 2; 20 snapshots one tau apart are correlated as e^{-2 j} for v^2,
-// which inflates the variance by (1 + e^{-2}) / (1 - e^{-2}) = 1.31. Standard error:
-// sqrt(2 * 1.31 / (8000 * 20)) = 0.4% (2D), 0.33% (3D); 2% is 5 standard errors.
+// dt (hence the long dt = 0.1 tau): only statistics and the memory of the cold start
+// remain. After 10 relaxation times (tau = m / gamma = 2) the start is forgotten to
+// e^{-20}. Each snapshot has N D = 8000 (2D) or 12000 (3D) independent components,
+// m v_a^2 / T ~ chi^2_1 with relative variance 2; 20 snapshots one tau apart are
+// correlated as e^{-2 j} for v^2, which inflates the variance by
+// (1 + e^{-2}) / (1 - e^{-2}) = 1.31. Standard error: sqrt(2 * 1.31 / (8000 * 20)) =
+// 0.4% (2D), 0.33% (3D); 2% is 5 standard errors.
 template <int D> void check_free_equipartition() {
     auto s = free_particles<D>(4000, 13);
     s.p.species_table[0].mass = 2.0;
-    const double T = 1.5, gamma = 1.0, dt = 0.05, tau = 2.0;
+    const double T = 1.5, gamma = 1.0, dt = 0.2, tau = 2.0;
     Evolver<D> e(s, 2.0);
     e.add_integrator(std::make_unique<LangevinIntegrator<D>>(T, gamma, 17));
     const auto per_tau = static_cast<std::uint64_t>(std::llround(tau / dt));
@@ -338,30 +393,33 @@ TEST(Langevin, FreeParticlesReachEquipartition3D) {
     check_free_equipartition<3>();
 }
 
-// A 1:5 mass mixture with per-species friction (gamma 1 and 2.5, so that the heavy
-// species relaxes 2x slower) and harmonic repulsion: both species reach T.
+// A 1:5 mass mixture with per-species friction and harmonic repulsion, started at rest:
+// both species reach T. Relaxation times m / gamma are 0.5 (m = 1, gamma = 2) and 1
+// (m = 5, gamma = 5).
 //
-// Tolerance 3%: with forces BAOAB's kinetic temperature carries an O(dt^2) bias (below
-// 1e-3 here, omega dt = 0.045), so statistics dominate. Each species has 1000 particles,
-// 2000 components per snapshot, 40 snapshots one slowest relaxation time (2) apart; the
-// collisions add correlations, so count the effective samples as half: standard error
-// sqrt(2 * 1.31 / (2000 * 20)) = 0.8%; 3% is nearly 4 standard errors. A thermostat that
-// used one mass for all species would miss the heavy species by a factor 5.
+// Tolerance 4%. Bias: with forces BAOAB's kinetic temperature is off by O((omega dt)^2)
+// with omega dt = 0.045, below 1e-3; after a burn-in of 5 slow relaxation times the cold
+// start is forgotten to e^{-10}. Statistics: each species has 800 particles, 1600
+// components per snapshot, 30 snapshots one slow relaxation time apart (variance
+// inflated by 1.31 as above, and by another 2x for the correlations the collisions
+// add): standard error sqrt(2 * 1.31 * 2 / (1600 * 30)) = 1.0%; 4% is 4 standard
+// errors. A thermostat that used one mass for all species would put the heavy species
+// at T / 5 or 5 T.
 TEST(Langevin, MassMixtureBothSpeciesReachT) {
-    auto s = dense_harmonic_system<2>(2000, 0.6, 23);
+    auto s = dense_harmonic_system<2>(1600, 0.5, 23);
     s.p.species_table.push_back(Species{"heavy", 0.5, 5.0});
     for (std::size_t i = 0; i < s.size(); i += 2) s.p.species[i] = 1;
     for (auto& v : s.p.velocity) v = Vec<2>{};
-    const double T = 0.8, dt = 0.01;
+    const double T = 0.5, dt = 0.01;
     Evolver<2> e(s, 0.3);
     add_harmonic(e);
     e.add_integrator(
-        std::make_unique<LangevinIntegrator<2>>(T, PerSpecies(std::vector<double>{1.0, 2.5}), 29));
-    const auto t = measure_temperatures(e, s, 2000, 40, 200, dt);
+        std::make_unique<LangevinIntegrator<2>>(T, PerSpecies(std::vector<double>{2.0, 5.0}), 29));
+    const auto t = measure_temperatures(e, s, 500, 30, 100, dt);
     std::printf("langevin mixture: <m v_a^2> / T = %.4f (m = 1), %.4f (m = 5)\n", t.T[0] / T,
                 t.T[1] / T);
-    EXPECT_NEAR(t.T[0] / T, 1.0, 0.03);
-    EXPECT_NEAR(t.T[1] / T, 1.0, 0.03);
+    EXPECT_NEAR(t.T[0] / T, 1.0, 0.04);
+    EXPECT_NEAR(t.T[1] / T, 1.0, 0.04);
 }
 
 // Velocity autocorrelation of free particles in equilibrium: <v(t).v(0)> / <v(0)^2> =
@@ -408,13 +466,14 @@ TEST(Langevin, VelocityAutocorrelationDecaysAtGammaOverM3D) {
 //
 // Tolerance 4%. Discretisation: with no forces BAOAB samples v exactly and moves r by
 // the trapezoidal rule, whose long-time diffusion constant is (T / gamma)(h / 2)
-// coth(h / 2), h = gamma dt / m: relative error h^2 / 12 = 3e-5 at h = 0.02.
+// coth(h / 2), h = gamma dt / m: relative error h^2 / 12 = 2e-4 at h = 0.05 (and the
+// exact discrete sum differs from the formula by 2e-3 at 4 steps, t = 0.1).
 // Statistics: every displacement component is Gaussian, so dr^2 of one particle has a
 // relative spread sqrt(2 / d); over N = 10000 the standard error is 1% (2D), 0.8% (3D),
 // and 4% is 4 (5) standard errors.
 template <int D> void check_free_msd() {
     auto s = free_particles<D>(10000, 43);
-    const double T = 0.5, gamma = 2.0, m = 1.0, dt = 0.01, tau = m / gamma;
+    const double T = 0.5, gamma = 2.0, m = 1.0, dt = 0.025, tau = m / gamma;
     maxwell_velocities(s, T, 47);
     std::vector<Vec<D>> start(s.size());
     for (std::size_t i = 0; i < s.size(); ++i) start[i] = s.unwrapped(i);
@@ -442,7 +501,7 @@ TEST(Langevin, FreeParticleMsdIsOrnsteinUhlenbeck3D) {
     check_free_msd<3>();
 }
 
-// Same seed, 1 and 2 threads: bit-identical positions, velocities and images after 300
+// Same seed, 1 and 2 threads: bit-identical positions, velocities and images after 200
 // steps of interacting Langevin particles (noise keyed by tag and step, forces summed
 // per particle in list order).
 template <int D> SoftState<D> langevin_run(int threads) {
@@ -451,7 +510,7 @@ template <int D> SoftState<D> langevin_run(int threads) {
     Evolver<D> e(s, 0.3);
     add_harmonic(e);
     e.add_integrator(std::make_unique<LangevinIntegrator<D>>(1.0, 1.0, 67));
-    e.run(300, 0.01);
+    e.run(200, 0.01);
     return s;
 }
 

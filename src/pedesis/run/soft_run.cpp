@@ -58,9 +58,10 @@ template <int D> class SoftRun {
                 book_.start[state_.p.tag[i]] = state_.unwrapped(i);
         }
         read_observable_parameters(table);
-        // the list is built here so that a box too small for the cutoff is reported
-        // before any output exists
-        evolver_->neighbor_list();
+        // built here so that a box too small for the cutoff is reported before any output
+        // exists; a restored run has its list already (building now could rebuild it at
+        // another point of the step than the continuous run did)
+        if (!o_.restart) evolver_->neighbor_list();
         prepare_directory();
 
         console_ << fmt::format(
@@ -77,6 +78,8 @@ template <int D> class SoftRun {
         try {
             while (state_.step < c_.steps) {
                 evolver_->evolve(c_.dt);
+                // a multiple of dt, not a running sum: t = 10 after 1000 steps of 0.01
+                state_.time = static_cast<double>(state_.step) * c_.dt;
                 const std::uint64_t k = state_.step;
                 if (k % c_.log_every == 0 || k == c_.steps) log_row();
                 if (c_.snapshot_every && k % c_.snapshot_every == 0 && k != c_.steps) frame();

@@ -14,10 +14,44 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace pedesis {
 
 namespace detail {
+// Particles per batch of the integrator loops below.
+constexpr int noise_batch = 64;
+
+// `Per` standard normals for each of the m <= noise_batch particles with tags tag[0..m),
+// into z[k * Per + c]: Box-Muller on the Philox stream (seed, stream, tag, step), both
+// halves of each draw used (2D translation needs one Philox block and one logarithm).
+// The work runs in phases over the batch (Philox blocks, logarithms, polynomials)
+// rather than particle by particle: one particle's chain of dependent operations is
+// long, and the processor overlaps many short independent ones far better. Each
+// number is computed by the same operations as alone, so nothing depends on batching.
+template <int Per>
+void batch_normals(std::uint64_t seed, RngStream stream, const std::uint32_t* tag,
+                   std::uint32_t step, int m, double* z) {
+    constexpr int pairs = (Per + 1) / 2;
+    double u1[noise_batch * pairs], u2[noise_batch * pairs];
+    for (int k = 0; k < m; ++k) {
+        CounterRng rng(seed, stream, tag[k], step);
+        for (int p = 0; p < pairs; ++p) {
+            u1[k * pairs + p] = rng.uniform();
+            u2[k * pairs + p] = rng.uniform();
+        }
+    }
+    const int q_end = m * pairs;
+    double r[noise_batch * pairs], sn[noise_batch * pairs], cs[noise_batch * pairs];
+    for (int q = 0; q < q_end; ++q) r[q] = std::sqrt(-2.0 * std::log(u1[q]));
+    for (int q = 0; q < q_end; ++q) sincos_turns(u2[q], sn[q], cs[q]);
+    for (int k = 0; k < m; ++k)
+        for (int c = 0; c < Per; ++c) {
+            const int q = k * pairs + c / 2;
+            z[k * Per + c] = r[q] * (c % 2 == 0 ? cs[q] : sn[q]);
+        }
+}
+
 inline void check_overdamped(const PerSpecies& T, const PerSpecies& gamma, const char* who) {
     for (double t : T.values())
         if (!(t >= 0.0 && std::isfinite(t)))
@@ -66,16 +100,25 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+        constexpr int B = detail::noise_batch;
+        const std::int64_t batches = (n + B - 1) / B;
 #pragma omp parallel for schedule(static) reduction(min : bad)
-        for (std::int64_t i = 0; i < n; ++i) {
-            Vec<D> move = drift[sp[i]] * s.force[i];
-            if (noisy) {
-                CounterRng rng(seed_, RngStream::thermostat, s.p.tag[i], step);
-                for (int a = 0; a < D; ++a) move[a] += kick[sp[i]] * rng.normal();
+        for (std::int64_t b = 0; b < batches; ++b) {
+            const std::int64_t first = b * B;
+            const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
+            double z[B * D];
+            if (noisy)
+                detail::batch_normals<D>(seed_, RngStream::thermostat, s.p.tag.data() + first,
+                                         step, m, z);
+            for (int k = 0; k < m; ++k) {
+                const std::int64_t i = first + k;
+                Vec<D> move = drift[sp[i]] * s.force[i];
+                if (noisy)
+                    for (int a = 0; a < D; ++a) move[a] += kick[sp[i]] * z[k * D + a];
+                if (!(norm2(move) <= max2)) bad = std::min(bad, i);
+                s.p.position[i] += move;
+                s.p.velocity[i] = move * (1.0 / dt);
             }
-            if (!(norm2(move) <= max2)) bad = std::min(bad, i);
-            s.p.position[i] += move;
-            s.p.velocity[i] = move * (1.0 / dt);
         }
         if (bad != std::numeric_limits<std::int64_t>::max()) {
             const auto i = static_cast<std::size_t>(bad);
@@ -108,22 +151,48 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
         const std::uint16_t* sp = s.p.species.data();
         const auto n = static_cast<std::int64_t>(s.size());
         const auto step = static_cast<std::uint32_t>(s.step);
+        constexpr int B = detail::noise_batch;
+        constexpr int per = D == 2 ? 1 : 3; // normals per particle
+        const bool noisy = c_.noisy;
+        const std::int64_t batches = (n + B - 1) / B;
 #pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < n; ++i) {
-            CounterRng rng(seed_, RngStream::orientation, s.p.tag[i], step);
-            const double drift = drift_of[sp[i]], kick = kick_of[sp[i]];
-            Vec<D>& d = s.director[i];
+        for (std::int64_t b = 0; b < batches; ++b) {
+            const std::int64_t first = b * B;
+            const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
+            double z[B * per];
+            if (noisy)
+                detail::batch_normals<per>(seed_, RngStream::orientation,
+                                           s.p.tag.data() + first, step, m, z);
             if constexpr (D == 2) {
-                double dtheta = drift * s.torque[i][0];
-                if (kick > 0.0) dtheta += kick * rng.normal();
-                const double c = std::cos(dtheta), sn = std::sin(dtheta);
-                d = Vec<D>{{c * d[0] - sn * d[1], sn * d[0] + c * d[1]}};
+                double angle[B], sn[B], cs[B];
+                for (int k = 0; k < m; ++k) {
+                    const std::int64_t i = first + k;
+                    const double kick = kick_of[sp[i]];
+                    angle[k] = drift_of[sp[i]] * s.torque[i][0];
+                    if (kick > 0.0) angle[k] += kick * z[k];
+                }
+                // the polynomials serve the small angles of a step; libm the rare rest
+                for (int k = 0; k < m; ++k) detail::sincos_kernel(angle[k], sn[k], cs[k]);
+                for (int k = 0; k < m; ++k)
+                    if (!(std::abs(angle[k]) <= 0.25 * std::numbers::pi)) {
+                        sn[k] = std::sin(angle[k]);
+                        cs[k] = std::cos(angle[k]);
+                    }
+                for (int k = 0; k < m; ++k) {
+                    Vec<D>& d = s.director[first + k];
+                    d = Vec<D>{{cs[k] * d[0] - sn[k] * d[1], sn[k] * d[0] + cs[k] * d[1]}};
+                }
             } else {
-                Vec<D> w = drift * s.torque[i]; // angular displacement
-                if (kick > 0.0)
-                    for (int a = 0; a < D; ++a) w[a] += kick * rng.normal();
-                d += cross(w, d);
-                d *= 1.0 / norm(d);
+                for (int k = 0; k < m; ++k) {
+                    const std::int64_t i = first + k;
+                    const double kick = kick_of[sp[i]];
+                    Vec<D> w = drift_of[sp[i]] * s.torque[i]; // angular displacement
+                    if (kick > 0.0)
+                        for (int a = 0; a < D; ++a) w[a] += kick * z[k * per + a];
+                    Vec<D>& d = s.director[i];
+                    d += cross(w, d);
+                    d *= 1.0 / norm(d);
+                }
             }
         }
     }

@@ -111,9 +111,18 @@ template <int D> void Evolver<D>::evolve(double dt) {
 }
 
 template <int D> PairTotals Evolver<D>::pair_totals() {
-    ensure_list();
+    if (!nl_) ensure_list();
     PairTotals t;
-    for (const auto& f : forces_) f->add_totals(s_, *nl_, t);
+    if (!nl_->needs_rebuild(s_.p.position)) {
+        for (const auto& f : forces_) f->add_totals(s_, *nl_, t);
+        return t;
+    }
+    // A rebuild here would change the rows, hence the summation order of the next
+    // forces: how often a run is logged must not change its trajectory. A list of its
+    // own serves the totals instead.
+    NeighborList<D> fresh(s_.box, r_list_cut_, skin_);
+    fresh.build(s_.p.position);
+    for (const auto& f : forces_) f->add_totals(s_, fresh, t);
     return t;
 }
 

@@ -73,6 +73,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
                 throw InputError("langevin: gamma must be a positive finite number");
     }
     std::string name() const override { return "langevin"; }
+    // the first B half-kick reads the forces of the positions the step starts from
     bool needs_initial_forces() const override { return true; }
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }

@@ -5,6 +5,9 @@
 #include "pedesis/soft/plugins.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 
 namespace pedesis {
 
@@ -22,26 +25,13 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
     }
 
     void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const override {
-        const auto n = static_cast<std::int64_t>(s.size());
-        const Vec<D>* pos = s.p.position.data();
-        const std::uint16_t* sp = s.p.species.data();
-        const Species* table = s.p.species_table.data();
-        Vec<D>* force = s.force.data();
-        const Box<D>& box = s.box;
-#pragma omp parallel for schedule(static)
-        for (std::int64_t ii = 0; ii < n; ++ii) {
-            const auto i = static_cast<std::size_t>(ii);
-            const Vec<D> ri = pos[i];
-            const double rad_i = table[sp[i]].radius;
-            Vec<D> f{};
-            for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it) {
-                const Vec<D> d = box.minimum_image(ri - pos[*it]);
-                double f_over_r, energy;
-                if (pair_.eval(norm2(d), rad_i + table[sp[*it]].radius, f_over_r, energy))
-                    f += f_over_r * d;
-            }
-            force[i] += f;
-        }
+        const auto& table = s.p.species_table;
+        bool uniform = true;
+        for (const auto& sp : table) uniform = uniform && sp.radius == table[0].radius;
+        if (uniform)
+            add_rows<true>(s, nl);
+        else
+            add_rows<false>(s, nl);
     }
 
     void add_totals(const SoftState<D>& s, const NeighborList<D>& nl,
@@ -61,6 +51,79 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
     }
 
   private:
+    // Candidates are filtered in chunks: those within the pair's largest range are
+    // packed (branch-free) into a buffer and only they are evaluated. About a third of a
+    // row lies in the skin, at random, so testing each candidate with a branch
+    // mispredicted often; evaluating the packed ones keeps list order, so the sums are
+    // the same whatever the thread count.
+    static constexpr int chunk = 32;
+
+    // With one radius for all species (the common case) the sum of radii is a constant
+    // and the rows never read the species of a neighbour.
+    template <bool Uniform> void add_rows(SoftState<D>& s, const NeighborList<D>& nl) const {
+        const auto n = static_cast<std::int64_t>(s.size());
+        const Vec<D>* pos = s.p.position.data();
+        const std::uint16_t* sp = s.p.species.data();
+        const Species* table = s.p.species_table.data();
+        double max_radius = 0.0;
+        for (const auto& t : s.p.species_table) max_radius = std::max(max_radius, t.radius);
+        const double rc = pair_.max_range(2.0 * max_radius);
+        const double rc2 = rc * rc;
+        Vec<D>* force = s.force.data();
+        const Box<D>& box = s.box;
+        // A particle further than this from every periodic face has all its neighbours
+        // in the same image (their distance stays below r_list + skin between builds,
+        // since each moves at most skin/2): its row needs no minimum image.
+        std::array<double, D> inner;
+        for (int a = 0; a < D; ++a)
+            inner[a] = box.periodic(a) ? box.hi(a) - (nl.r_list() + nl.skin())
+                                       : std::numeric_limits<double>::infinity();
+#pragma omp parallel for schedule(static)
+        for (std::int64_t ii = 0; ii < n; ++ii) {
+            const auto i = static_cast<std::size_t>(ii);
+            const Vec<D> ri = pos[i];
+            const double rad_i = table[sp[i]].radius;
+            bool interior = true;
+            for (int a = 0; a < D; ++a) interior = interior && std::abs(ri[a]) < inner[a];
+            Vec<D> f{};
+            // plain arrays: a std::array of Vec would be zeroed for every row
+            double dbuf[chunk][D], r2buf[chunk], rsbuf[chunk];
+            for (const std::uint32_t* it = nl.begin(i); it != nl.end(i);) {
+                const std::uint32_t* const stop =
+                    it + std::min<std::ptrdiff_t>(chunk, nl.end(i) - it);
+                int m = 0;
+                if (interior)
+                    for (; it != stop; ++it) {
+                        const Vec<D> d = ri - pos[*it];
+                        pack(d, Uniform ? 0.0 : rad_i + table[sp[*it]].radius, rc2, dbuf, r2buf,
+                             rsbuf, m);
+                    }
+                else
+                    for (; it != stop; ++it) {
+                        const Vec<D> d = box.minimum_image(ri - pos[*it]);
+                        pack(d, Uniform ? 0.0 : rad_i + table[sp[*it]].radius, rc2, dbuf, r2buf,
+                             rsbuf, m);
+                    }
+                const double rsum_uniform = 2.0 * rad_i;
+                for (int q = 0; q < m; ++q) {
+                    double f_over_r, energy;
+                    if (pair_.eval(r2buf[q], Uniform ? rsum_uniform : rsbuf[q], f_over_r, energy))
+                        for (int a = 0; a < D; ++a) f[a] += f_over_r * dbuf[q][a];
+                }
+            }
+            force[i] += f;
+        }
+    }
+
+    static void pack(const Vec<D>& d, double rsum, double rc2, double (&dbuf)[chunk][D],
+                     double (&r2buf)[chunk], double (&rsbuf)[chunk], int& m) {
+        const double r2 = norm2(d);
+        for (int a = 0; a < D; ++a) dbuf[m][a] = d[a];
+        r2buf[m] = r2;
+        rsbuf[m] = rsum;
+        m += r2 < rc2;
+    }
+
     std::string name_;
     Pair pair_;
 };

@@ -3,6 +3,11 @@
 // than a; in 2D that is J sum_j sin(theta_j - theta_i), turning n_i towards n_j.
 #include "pedesis/soft/plugins.hpp"
 
+#include <array>
+#include <bit>
+#include <cmath>
+#include <limits>
+
 namespace pedesis {
 
 template <int D> inline TorqueVec<D> cross(const Vec<D>& a, const Vec<D>& b) {
@@ -22,20 +27,44 @@ template <int D> class PolarAlign final : public TorqueTerm<D> {
     void add_torques(SoftState<D>& s, const NeighborList<D>& nl) const override {
         const auto n = static_cast<std::int64_t>(s.size());
         const double a2 = a_ * a_;
+        const Vec<D>* pos = s.p.position.data();
+        const Vec<D>* dir = s.director.data();
+        const Box<D>& box = s.box;
+        // As in the pair loop: rows of particles this far from every periodic face need
+        // no minimum image.
+        std::array<double, D> inner;
+        for (int a = 0; a < D; ++a)
+            inner[a] = box.periodic(a) ? box.hi(a) - (nl.r_list() + nl.skin())
+                                       : std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static)
         for (std::int64_t ii = 0; ii < n; ++ii) {
             const auto i = static_cast<std::size_t>(ii);
-            const Vec<D> ri = s.p.position[i];
-            const Vec<D> ni = s.director[i];
-            TorqueVec<D> t{};
-            for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it)
-                if (norm2(s.box.minimum_image(ri - s.p.position[*it])) <= a2)
-                    t += cross(ni, s.director[*it]);
-            s.torque[i] += J_ * t;
+            const Vec<D> ri = pos[i];
+            bool interior = true;
+            for (int a = 0; a < D; ++a) interior = interior && std::abs(ri[a]) < inner[a];
+            // The torque is linear in n_j: n_i x (sum of the n_j in range), one cross
+            // product per particle. The sum is masked rather than branched on: whether a
+            // neighbour is in range is a coin toss the branch predictor loses (and the
+            // compiler turns a multiplication by 0 or 1 back into a branch).
+            Vec<D> sum{};
+            if (interior)
+                for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it)
+                    add_masked(sum, dir[*it], norm2(ri - pos[*it]) <= a2);
+            else
+                for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it)
+                    add_masked(sum, dir[*it], norm2(box.minimum_image(ri - pos[*it])) <= a2);
+            s.torque[i] += J_ * cross(s.director[i], sum);
         }
     }
 
   private:
+    // sum += v if in, else sum += +0 (which leaves every sum but -0 unchanged)
+    static void add_masked(Vec<D>& sum, const Vec<D>& v, bool in) {
+        const std::uint64_t mask = 0 - static_cast<std::uint64_t>(in);
+        for (int a = 0; a < D; ++a)
+            sum[a] += std::bit_cast<double>(std::bit_cast<std::uint64_t>(v[a]) & mask);
+    }
+
     double J_, a_;
 };
 
