@@ -58,8 +58,8 @@ std::string tutorial_config(const std::string& run, const std::string& output,
 class SoftRun : public ScratchDir {};
 
 TEST_F(SoftRun, TutorialExampleRunsAndWritesParaViewFiles) {
-    const auto r = run_pedesis("run '" + (examples / "abp_tutorial.toml").string() + "' --out out",
-                               dir);
+    const auto r =
+        run_pedesis("run '" + (examples / "abp_tutorial.toml").string() + "' --out out", dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     // a snapshot every 10 of 1000 steps, the first included
     std::size_t vtp = 0;
@@ -67,22 +67,22 @@ TEST_F(SoftRun, TutorialExampleRunsAndWritesParaViewFiles) {
         vtp += e.path().extension() == ".vtp";
     EXPECT_EQ(vtp, 101u);
     // a real XML parser reads the last one, with the arrays ParaView needs
-    const auto py = run_python(
-        "import xml.etree.ElementTree as ET\n"
-        "root = ET.parse('" + (dir / "out/snapshots/frame_000100.vtp").string() + "').getroot()\n"
-        "piece = root.find('PolyData/Piece')\n"
-        "print('points', piece.get('NumberOfPoints'))\n"
-        "for a in piece.find('PointData'):\n"
-        "    vals = a.text.split()\n"
-        "    ncomp = int(a.get('NumberOfComponents', '1'))\n"
-        "    print(a.get('Name'), len(vals) // ncomp)\n",
-        dir);
+    const auto py = run_python("import xml.etree.ElementTree as ET\n"
+                               "root = ET.parse('" +
+                                   (dir / "out/snapshots/frame_000100.vtp").string() +
+                                   "').getroot()\n"
+                                   "piece = root.find('PolyData/Piece')\n"
+                                   "print('points', piece.get('NumberOfPoints'))\n"
+                                   "for a in piece.find('PointData'):\n"
+                                   "    vals = a.text.split()\n"
+                                   "    ncomp = int(a.get('NumberOfComponents', '1'))\n"
+                                   "    print(a.get('Name'), len(vals) // ncomp)\n",
+                               dir);
     ASSERT_EQ(py.exit_code, 0) << py.output;
     EXPECT_NE(py.output.find("points 1000"), std::string::npos) << py.output;
     for (const char* name : {"id", "director", "velocity", "force", "radius"})
-        EXPECT_NE(py.output.find(std::string(name) + " 1000"), std::string::npos)
-            << name << "\n"
-            << py.output;
+        EXPECT_NE(py.output.find(std::string(name) + " 1000"), std::string::npos) << name << "\n"
+                                                                                  << py.output;
     const auto summary = read_json(dir / "out" / "summary.json");
     EXPECT_EQ(summary["steps"], 1000);
     EXPECT_DOUBLE_EQ(summary["time"].get<double>(), 10.0);
@@ -110,17 +110,21 @@ TEST_F(SoftRun, JsonAndGsdAgreeAndPythonGsdReadsTheTrajectory) {
                << particles[k]["r"][1].get<double>() << "),";
     const auto py = run_python(
         "import gsd.hoomd\n"
-        "t = gsd.hoomd.open('" + (dir / "out/trajectory.gsd").string() + "')\n"
-        "f = t[len(t) - 1]\n"
-        "assert len(t) == 3, len(t)\n"
-        "assert f.particles.N == 1000, f.particles.N\n"
-        "assert list(f.configuration.box) == [50, 50, 0, 0, 0, 0], f.configuration.box\n"
-        "assert f.configuration.dimensions == 2\n"
-        "assert f.configuration.step == 40, f.configuration.step\n"
-        "for k, x, y in [" + expect.str() + "]:\n"
-        "    p = f.particles.position[k]\n"
-        "    assert abs(p[0] - x) < 1e-5 and abs(p[1] - y) < 1e-5 and p[2] == 0, (k, p, x, y)\n"
-        "print('ok')\n",
+        "t = gsd.hoomd.open('" +
+            (dir / "out/trajectory.gsd").string() +
+            "')\n"
+            "f = t[len(t) - 1]\n"
+            "assert len(t) == 3, len(t)\n"
+            "assert f.particles.N == 1000, f.particles.N\n"
+            "assert list(f.configuration.box) == [50, 50, 0, 0, 0, 0], f.configuration.box\n"
+            "assert f.configuration.dimensions == 2\n"
+            "assert f.configuration.step == 40, f.configuration.step\n"
+            "for k, x, y in [" +
+            expect.str() +
+            "]:\n"
+            "    p = f.particles.position[k]\n"
+            "    assert abs(p[0] - x) < 1e-5 and abs(p[1] - y) < 1e-5 and p[2] == 0, (k, p, x, y)\n"
+            "print('ok')\n",
         dir);
     ASSERT_EQ(py.exit_code, 0) << py.output;
     EXPECT_NE(py.output.find("ok"), std::string::npos) << py.output;
@@ -162,7 +166,8 @@ TEST_F(SoftRun, RestartEqualsContinuousRunWithSortingAndNoise) {
     // the [neighbor_list] of the example, sorting often, and thermal noise on positions
     std::string text = tutorial_config("steps = 200\ndt = 0.01", "");
     ASSERT_NE(text.find("\npad = 0.5\n"), std::string::npos);
-    std::string full = std::regex_replace(text, std::regex("\npad = 0.5\n"), "\npad = 0.5\nsort_every = 30\n");
+    std::string full =
+        std::regex_replace(text, std::regex("\npad = 0.5\n"), "\npad = 0.5\nsort_every = 30\n");
     full = std::regex_replace(full, std::regex("T = 0.0\n"), "T = 0.05\n");
     std::string half = std::regex_replace(full, std::regex("steps = 200"), "steps = 100");
     full += "formats = [\"json\"]\nlog_every = 25\n";
@@ -180,8 +185,8 @@ TEST_F(SoftRun, RestartEqualsContinuousRunWithSortingAndNoise) {
 TEST_F(SoftRun, RestartEqualsContinuousRunLangevin) {
     // velocity Verlet half-kicks read the forces saved in the checkpoint
     std::string text = tutorial_config("steps = 200\ndt = 0.005", "");
-    text = std::regex_replace(text, std::regex("dynamics = \"brownian\""),
-                              "dynamics = \"langevin\"");
+    text =
+        std::regex_replace(text, std::regex("dynamics = \"brownian\""), "dynamics = \"langevin\"");
     text = std::regex_replace(text, std::regex("name = \"brownian\"\nT = 0.0"),
                               "name = \"langevin\"\nT = 0.2");
     std::string half = std::regex_replace(text, std::regex("steps = 200"), "steps = 100");
@@ -244,7 +249,8 @@ progress = false
 
 TEST_F(SoftRun, BlowUpStopsNamingStepAndParticleAndKeepsTheLastGoodSnapshot) {
     // alpha = 1000 moves a particle 10 per step, far more than the skin of 0.5
-    std::string text = tutorial_config("steps = 50\ndt = 0.01", "snapshot_every = 1\nformats = [\"json\"]");
+    std::string text =
+        tutorial_config("steps = 50\ndt = 0.01", "snapshot_every = 1\nformats = [\"json\"]");
     text = std::regex_replace(text, std::regex("alpha = 1.0"), "alpha = 1000.0");
     write("boom.toml", text);
     const auto r = run_pedesis("run boom.toml --out out", dir);

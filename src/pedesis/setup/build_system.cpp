@@ -72,7 +72,9 @@ void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::si
     if (sp.positions == "random") {
         PlacementRequest<D> req;
         req.count = count;
-        req.radius = sp.radius;
+        // soft particles may overlap (the ABP tutorial's builder keeps only centres rcut
+        // apart): for them only [initial] min_distance constrains the placement
+        req.radius = c.soft() ? 0.0 : sp.radius;
         req.lo = reg.lo;
         req.hi = reg.hi;
         req.min_distance = c.min_distance;
