@@ -247,6 +247,66 @@ progress = false
     }
 }
 
+TEST_F(SoftRun, ThreeDimensionalRunThroughTheSamePlugins) {
+    // 3D: positions from [[species]], directors on the sphere, alignment and rotational
+    // noise; directors stay unit vectors and python3-gsd sees a 3D box.
+    write("abp3d.toml", R"(dimension = 3
+dynamics = "brownian"
+seed = 9
+[box]
+length = 12
+[[species]]
+name = "A"
+count = 300
+radius = 0.5
+[[force]]
+name = "harmonic"
+k = 10.0
+[[force]]
+name = "self_propulsion"
+alpha = 1.0
+[[torque]]
+name = "polar_align"
+J = 1.0
+a = 1.5
+[[integrator]]
+name = "brownian"
+T = 0.1
+gamma = 1.0
+[[integrator]]
+name = "brownian_rotation"
+T = 0.1
+gamma = 1.0
+[run]
+steps = 100
+dt = 0.005
+[output]
+formats = ["json", "gsd"]
+progress = false
+)");
+    const auto r = run_pedesis("run abp3d.toml --out out", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto p = read_json(dir / "out/snapshots/frame_000001.json")["system"]["particles"];
+    ASSERT_EQ(p.size(), 300u);
+    for (const auto& q : p) {
+        ASSERT_EQ(q["r"].size(), 3u);
+        const double n = std::sqrt(q["n"][0].get<double>() * q["n"][0].get<double>() +
+                                   q["n"][1].get<double>() * q["n"][1].get<double>() +
+                                   q["n"][2].get<double>() * q["n"][2].get<double>());
+        EXPECT_NEAR(n, 1.0, 1e-12);
+    }
+    const auto py = run_python("import gsd.hoomd\n"
+                               "f = gsd.hoomd.open('" +
+                                   (dir / "out/trajectory.gsd").string() +
+                                   "')[1]\n"
+                               "assert f.configuration.dimensions == 3\n"
+                               "assert list(f.configuration.box) == [12, 12, 12, 0, 0, 0]\n"
+                               "assert f.particles.N == 300\n"
+                               "print('ok')\n",
+                               dir);
+    EXPECT_EQ(py.exit_code, 0) << py.output;
+}
+
 TEST_F(SoftRun, BlowUpStopsNamingStepAndParticleAndKeepsTheLastGoodSnapshot) {
     // alpha = 1000 moves a particle 10 per step, far more than the skin of 0.5
     std::string text =

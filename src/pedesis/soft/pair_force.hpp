@@ -71,12 +71,10 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
         const double rc2 = rc * rc;
         Vec<D>* force = s.force.data();
         const Box<D>& box = s.box;
-        // A particle further than this from every periodic face has all its neighbours
-        // in the same image (their distance stays below r_list + skin between builds,
-        // since each moves at most skin/2): its row needs no minimum image.
+        // Rows of particles this far inside every periodic face need no minimum image.
         std::array<double, D> inner;
         for (int a = 0; a < D; ++a)
-            inner[a] = box.periodic(a) ? box.hi(a) - (nl.r_list() + nl.skin())
+            inner[a] = box.periodic(a) ? box.hi(a) - nl.image_free_margin()
                                        : std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static)
         for (std::int64_t ii = 0; ii < n; ++ii) {

@@ -34,7 +34,7 @@ template <int D> class PolarAlign final : public TorqueTerm<D> {
         // no minimum image.
         std::array<double, D> inner;
         for (int a = 0; a < D; ++a)
-            inner[a] = box.periodic(a) ? box.hi(a) - (nl.r_list() + nl.skin())
+            inner[a] = box.periodic(a) ? box.hi(a) - nl.image_free_margin()
                                        : std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static)
         for (std::int64_t ii = 0; ii < n; ++ii) {

@@ -55,6 +55,13 @@ template <int D> class NeighborList {
         return r;
     }
 
+    // Rows of particles further than this from every periodic face may use raw position
+    // differences instead of the minimum image while the list is current: their
+    // neighbours lie within r_list + skin, and positions are taken to lie within one
+    // step's largest move of the box (the evolver wraps them after every step, and no
+    // step moves a particle further than the skin, or r_cut without one).
+    double image_free_margin() const { return r_list_ + skin_ + (skin_ > 0.0 ? skin_ : r_cut_); }
+
     double r_cut() const { return r_cut_; }
     double skin() const { return skin_; }
     double r_list() const { return r_list_; }
