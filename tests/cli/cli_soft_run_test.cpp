@@ -203,6 +203,14 @@ TEST_F(SoftRun, RestartEqualsContinuousRunLangevin) {
                 slurp(dir / "cont/snapshots/frame_000002.json"));
 }
 
+TEST_F(SoftRun, RestartThatAsksForNoMoreStepsIsAnError) {
+    write("run.toml", tutorial_config("steps = 20\ndt = 0.01", "formats = [\"json\"]"));
+    ASSERT_EQ(run_pedesis("run run.toml --out a", dir).exit_code, 0);
+    const auto r = run_pedesis("run run.toml --out b --restart a/checkpoint.bin", dir);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("is at step 20, and run.steps = 20"), std::string::npos) << r.output;
+}
+
 TEST_F(SoftRun, PerSpeciesSelfPropulsion) {
     // Two species placed at random, no pair forces, no noise: species A moves at
     // alpha / gamma = 2 along its director, B (alpha = 0) never moves. Exact to rounding.

@@ -307,6 +307,7 @@ RunConfig load_run_config(const std::string& path) {
         init->finish();
     }
     if (root.has("box") || !(c.soft() && c.initial_file)) read_box(root, c);
+    c.species_defaults = defaults;
     read_species(root, c, defaults);
     if (c.soft())
         read_soft_sections(doc, root, c);

@@ -36,6 +36,7 @@ struct RunConfig {
     std::vector<bool> periodic;
 
     std::vector<SpeciesConfig> species;
+    SpeciesConfig species_defaults; // from [initial], for species a soft run takes from its file
 
     std::optional<std::string> initial_file; // tutorial JSON with positions (and maybe velocities)
     bool zero_momentum = true;

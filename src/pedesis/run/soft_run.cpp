@@ -52,6 +52,11 @@ template <int D> class SoftRun {
             for (const auto& spec : *list) add_plugin(*evolver_, spec, table, c_.seed);
         if (o_.restart) {
             load_soft_checkpoint(*o_.restart, c_, state_, *evolver_, book_);
+            if (state_.step >= c_.steps)
+                throw InputError(fmt::format(
+                    "{}: the checkpoint {} is at step {}, and run.steps = {} asks for no more; "
+                    "raise run.steps to continue",
+                    c_.file, o_.restart->string(), state_.step, c_.steps));
         } else {
             book_.start.resize(state_.size());
             for (std::size_t i = 0; i < state_.size(); ++i)
@@ -70,16 +75,19 @@ template <int D> class SoftRun {
             D, c_.dynamics, state_.size(), box_text(), c_.dt, c_.steps, evolver_->list_cutoff(),
             evolver_->skin(), o_.out_dir.string());
         if (!o_.restart) {
+            evolver_->compute_forces(); // so that frame 0 shows them; the step reuses them
             log_row();
             frame();
         }
         wall_start_ = std::chrono::steady_clock::now();
         step_start_ = state_.step;
+        time_start_ = state_.time;
         try {
             while (state_.step < c_.steps) {
                 evolver_->evolve(c_.dt);
                 // a multiple of dt, not a running sum: t = 10 after 1000 steps of 0.01
-                state_.time = static_cast<double>(state_.step) * c_.dt;
+                state_.time =
+                    time_start_ + static_cast<double>(state_.step - step_start_) * c_.dt;
                 const std::uint64_t k = state_.step;
                 if (k % c_.log_every == 0 || k == c_.steps) log_row();
                 if (c_.snapshot_every && k % c_.snapshot_every == 0 && k != c_.steps) frame();
@@ -89,6 +97,11 @@ template <int D> class SoftRun {
         } catch (const RunError& e) {
             // the state is broken: keep what was written while it was good
             close_streams();
+            if (frames_written_ == 0)
+                throw RunError(fmt::format(
+                    "{} (no snapshot was written by this run; the last good state is the "
+                    "checkpoint it started from, {})",
+                    e.what(), o_.restart ? o_.restart->string() : std::string("-")));
             throw RunError(fmt::format(
                 "{} (the last good snapshot is frame {} at step {}; it, the log and the last "
                 "checkpoint are in {})",
@@ -212,6 +225,7 @@ template <int D> class SoftRun {
         if (trajectory_) trajectory_->append(xyz_frame(state_.p, state_.box, state_.time));
         if (gsd_) gsd_->append(state_);
         ++book_.frames;
+        ++frames_written_;
         last_frame_step_ = state_.step;
     }
 
@@ -222,7 +236,7 @@ template <int D> class SoftRun {
     }
 
     void finish() {
-        if (last_frame_step_ != state_.step) frame();
+        if (frames_written_ == 0 || last_frame_step_ != state_.step) frame();
         save_soft_checkpoint(o_.out_dir / "checkpoint.bin", state_, *evolver_, book_);
         close_streams();
         const double wall =
@@ -267,7 +281,9 @@ template <int D> class SoftRun {
     std::unique_ptr<AtomicAppendFile> log_, trajectory_;
     std::unique_ptr<GsdWriter<D>> gsd_;
     std::uint64_t last_frame_step_ = 0;
+    std::uint64_t frames_written_ = 0; // by this invocation (a restart starts at 0)
     std::uint64_t step_start_ = 0;
+    double time_start_ = 0.0;
     std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
     std::optional<std::chrono::steady_clock::time_point> last_progress_;
 };

@@ -79,9 +79,9 @@ template <int D> RunConfig complete_from_initial_file(const RunConfig& config) {
         c.species.resize(static_cast<std::size_t>(types));
         std::vector<bool> set(c.species.size(), false);
         for (std::size_t s = 0; s < c.species.size(); ++s) {
+            c.species[s] = c.species_defaults; // velocities as [initial] says
             c.species[s].name = std::string(1, static_cast<char>('A' + s));
             c.species[s].positions = "file";
-            c.species[s].velocities = "zero";
             c.species[s].radius = 1.0; // the tutorial's particles have unit radius
         }
         for (const auto& fp : f.particles) {
