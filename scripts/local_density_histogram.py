@@ -12,8 +12,12 @@ For one frame of a GSD trajectory (by default the last) it prints
     phase separation gives two (a dilute gas and a dense, nearly close-packed phase).
   * the peaks of that histogram and whether it is bimodal;
   * the LARGEST-CLUSTER FRACTION: particles i and j are bonded when their centres are
-    closer than --contact times their contact distance r_i + r_j; the script reports
-    the share of all particles in the largest connected cluster (periodic box);
+    closer than --contact times their contact distance r_i + r_j. A particle with at
+    least --min-neighbours bonds (default 5; a close-packed disk has 6) is "dense", and
+    the script reports the share of all particles in the largest connected cluster of
+    dense particles (periodic box). (With --min-neighbours 0 every particle counts; at
+    area fractions near 0.6 such plain contact clusters percolate even in a homogeneous
+    active fluid, so they do not tell the phases apart.)
   * the polar order |sum n_i| / N of the directors (from the quaternions).
 
 With --every K it prints one line of these numbers for every K-th frame instead (a
@@ -142,7 +146,7 @@ def cluster_sizes(n, i, j):
 
 def histogram_peaks(phi, edges):
     """Histogram (share of cells per bin) and its peaks: local maxima of the lightly
-    smoothed histogram holding at least 5 % of the cells within +-1 bin, separated from
+    smoothed histogram holding at least 8 % of the cells within +-1 bin, separated from
     a neighbouring peak by a dip below 60 % of the lower of the two."""
     h, _ = np.histogram(phi, bins=edges)
     h = h / max(1, len(phi))
@@ -150,7 +154,7 @@ def histogram_peaks(phi, edges):
     centres = 0.5 * (edges[1:] + edges[:-1])
     cand = [k for k in range(len(s))
             if s[k] > 0 and (k == 0 or s[k] >= s[k - 1]) and (k == len(s) - 1 or s[k] > s[k + 1])
-            and h[max(0, k - 1):k + 2].sum() >= 0.05]
+            and h[max(0, k - 1):k + 2].sum() >= 0.08]
     peaks = []
     for k in cand:
         if peaks:
@@ -164,17 +168,21 @@ def histogram_peaks(phi, edges):
     return h, centres, [centres[k] for k in peaks]
 
 
-def analyse(frame, cell, contact, edges):
+def analyse(frame, cell, contact, min_neighbours, edges):
     box, pos, diam, n = frame_arrays(frame)
     phi_cells, side = local_area_fraction(box, pos, diam, cell)
     h, centres, peaks = histogram_peaks(phi_cells, edges)
     i, j = bonds(box, pos, diam, contact)
-    sizes = cluster_sizes(len(pos), i, j)
+    z = np.bincount(i, minlength=len(pos)) + np.bincount(j, minlength=len(pos))
+    dense = z >= min_neighbours
+    keep = dense[i] & dense[j]
+    sizes = cluster_sizes(len(pos), i[keep], j[keep])
+    sizes = np.append(sizes[sizes > 1], 1 if dense.any() else 0)  # isolated dense particles
     phi_mean = 0.25 * np.pi * (diam**2).sum() / box.prod()
     return dict(
         N=len(pos), box=box, side=side, phi_mean=phi_mean, phi_cells=phi_cells, hist=h,
         centres=centres, peaks=peaks, largest=sizes.max() / len(pos),
-        clusters_10=int((sizes >= 10).sum()), polar=np.linalg.norm(n.sum(0)) / len(pos),
+        clusters_10=int((sizes >= 10).sum()), dense=dense.mean(), min_neighbours=min_neighbours, polar=np.linalg.norm(n.sum(0)) / len(pos),
         pos=pos, diam=diam)
 
 
@@ -194,8 +202,9 @@ def print_histogram(r, width=50):
 def summary_line(r):
     peaks = ", ".join(f"{p:.2f}" for p in r["peaks"])
     mode = "bimodal" if len(r["peaks"]) >= 2 else "unimodal"
-    return (f"{mode} (peaks at {peaks}); largest cluster {100 * r['largest']:.1f} % of "
-            f"particles; polar order {r['polar']:.3f}")
+    return (f"{mode} (peaks at {peaks}); {100 * r['dense']:.1f} % of particles have >= "
+            f"{r['min_neighbours']} neighbours in contact; largest cluster of them "
+            f"{100 * r['largest']:.1f} % of all particles; polar order {r['polar']:.3f}")
 
 
 def plot(r, path, title):
@@ -220,7 +229,7 @@ def plot(r, path, title):
     b.set_xlim(-box[0] / 2, box[0] / 2)
     b.set_ylim(-box[1] / 2, box[1] / 2)
     b.set_aspect("equal")
-    b.set_title(f"largest cluster {100 * r['largest']:.0f} %")
+    b.set_title(f"largest dense cluster {100 * r['largest']:.0f} % of particles")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     print(f"wrote {path}")
@@ -240,6 +249,8 @@ def main():
                    help="cell side in particle diameters for the local density (default 5)")
     p.add_argument("--contact", type=float, default=1.1,
                    help="bond if closer than this times r_i + r_j (default 1.1)")
+    p.add_argument("--min-neighbours", type=int, default=5, metavar="Z",
+                   help="a particle is dense with at least Z bonds (default 5; 0: all count)")
     p.add_argument("--bins", type=float, default=0.05,
                    help="histogram bin width in area fraction (default 0.05)")
     p.add_argument("--dt", type=float, default=None,
@@ -252,6 +263,8 @@ def main():
         p.error(f"{a.gsd}: no such file{hint}")
     if a.cell <= 0 or a.contact <= 0 or a.bins <= 0:
         p.error("--cell, --contact and --bins must be positive")
+    if a.min_neighbours < 0:
+        p.error("--min-neighbours must be >= 0")
     dt = a.dt if a.dt is not None else read_dt(a.gsd)
 
     with gsd.hoomd.open(a.gsd) as traj:  # default mode: read (gsd 2 and 3)
@@ -270,26 +283,30 @@ def main():
             frames = list(range(0, nframes, a.every))
             if frames[-1] != nframes - 1:
                 frames.append(nframes - 1)
-            print(f"{'frame':>5} {'step':>9} {'time':>9} {'largest':>8} {'clusters':>8} "
-                  f"{'polar':>6} {'dilute<0.3':>10} {'dense>0.7':>9}  peaks")
+            print(f"{'frame':>5} {'step':>9} {'time':>9} {'dense':>6} {'largest':>8} {'clusters':>8} "
+                  f"{'polar':>6} {'cells<0.3':>9} {'cells>0.7':>9}  peaks")
             for k in frames:
                 fr = traj[k]
-                r = analyse(fr, cell, a.contact, edges)
+                r = analyse(fr, cell, a.contact, a.min_neighbours, edges)
                 s = int(fr.configuration.step)
                 t = f"{s * dt:9.4g}" if dt else f"{'?':>9}"
                 pk = ", ".join(f"{x:.2f}" for x in r["peaks"])
-                print(f"{k:5d} {s:9d} {t} {100 * r['largest']:7.1f}% {r['clusters_10']:8d} "
-                      f"{r['polar']:6.3f} {100 * np.mean(r['phi_cells'] < 0.3):9.1f}% "
+                print(f"{k:5d} {s:9d} {t} {100 * r['dense']:5.1f}% {100 * r['largest']:7.1f}% "
+                      f"{r['clusters_10']:8d} {r['polar']:6.3f} "
+                      f"{100 * np.mean(r['phi_cells'] < 0.3):8.1f}% "
                       f"{100 * np.mean(r['phi_cells'] > 0.7):8.1f}%  {pk}")
-            print("(largest: share of particles in the largest cluster; clusters: clusters of "
-                  ">= 10 particles; dilute/dense: share of cells below 0.3 / above 0.7)")
+            print(f"(dense: share of particles with >= {a.min_neighbours} neighbours within "
+                  f"{a.contact:g} contact distances; largest: share of all particles in the "
+                  "largest cluster of dense particles; clusters: such clusters of >= 10 "
+                  "particles; cells<0.3 / cells>0.7: share of cells with a local area fraction "
+                  "below 0.3 / above 0.7; peaks: of the local area fraction histogram)")
             k = frames[-1]
         else:
             k = a.frame if a.frame >= 0 else nframes + a.frame
             if not 0 <= k < nframes:
                 p.error(f"--frame {a.frame}: the file has {nframes} frames")
         fr = traj[k]
-        r = analyse(fr, cell, a.contact, edges)
+        r = analyse(fr, cell, a.contact, a.min_neighbours, edges)
         print(f"\n{a.gsd}: frame {k} of {nframes} ({when(fr)}), N = {r['N']}, "
               f"box {r['box'][0]:g} x {r['box'][1]:g}")
         print_histogram(r)

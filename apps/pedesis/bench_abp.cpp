@@ -47,9 +47,9 @@ constexpr double j_align = 1.0;
 template <int D> std::size_t state_bytes(const SoftState<D>& s) {
     return s.p.position.capacity() * sizeof(Vec<D>) + s.p.velocity.capacity() * sizeof(Vec<D>) +
            s.p.tag.capacity() * sizeof(std::uint32_t) +
-           s.p.species.capacity() * sizeof(std::uint16_t) +
-           s.director.capacity() * sizeof(Vec<D>) + s.force.capacity() * sizeof(Vec<D>) +
-           s.torque.capacity() * sizeof(TorqueVec<D>) + s.image.capacity() * sizeof(s.image[0]);
+           s.p.species.capacity() * sizeof(std::uint16_t) + s.director.capacity() * sizeof(Vec<D>) +
+           s.force.capacity() * sizeof(Vec<D>) + s.torque.capacity() * sizeof(TorqueVec<D>) +
+           s.image.capacity() * sizeof(s.image[0]);
 }
 
 // CPU time of the whole process: on a shared machine, wall time also counts the time
@@ -102,7 +102,8 @@ template <int D> void place_particles(SoftState<D>& s, const BenchAbpOptions& o,
             while (free) { // the (2 reach + 1)^D block around c
                 std::size_t idx = 0, stride = 1;
                 for (int a = 0; a < D; ++a) {
-                    idx += static_cast<std::size_t>(((c[a] + k[a]) % cells + cells) % cells) * stride;
+                    idx +=
+                        static_cast<std::size_t>(((c[a] + k[a]) % cells + cells) % cells) * stride;
                     stride *= static_cast<std::size_t>(cells);
                 }
                 const std::int32_t j = grid[idx];
@@ -167,12 +168,11 @@ template <int D> void run_bench(const BenchAbpOptions& o) {
     SoftState<D> s;
     build_system(s, o, L);
     Evolver<D> e(s, o.skin);
-    e.add_force(std::make_unique<PairForce<D, HarmonicPair>>(
-        "harmonic", HarmonicPair{k_harmonic, a_harmonic}));
+    e.add_force(std::make_unique<PairForce<D, HarmonicPair>>("harmonic",
+                                                             HarmonicPair{k_harmonic, a_harmonic}));
     e.add_force(std::make_unique<SelfPropulsion<D>>(alpha));
     if (o.align) e.add_torque(std::make_unique<PolarAlign<D>>(j_align, a_harmonic));
-    e.add_integrator(
-        std::make_unique<BrownianIntegrator<D>>(temperature, gamma_friction, o.seed));
+    e.add_integrator(std::make_unique<BrownianIntegrator<D>>(temperature, gamma_friction, o.seed));
     e.add_integrator(
         std::make_unique<BrownianRotationIntegrator<D>>(temperature, gamma_friction, o.seed));
     e.set_sort_interval(o.sort_interval);

@@ -108,8 +108,8 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
             const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
             double z[B * D];
             if (noisy)
-                detail::batch_normals<D>(seed_, RngStream::thermostat, s.p.tag.data() + first,
-                                         step, m, z);
+                detail::batch_normals<D>(seed_, RngStream::thermostat, s.p.tag.data() + first, step,
+                                         m, z);
             for (int k = 0; k < m; ++k) {
                 const std::int64_t i = first + k;
                 Vec<D> move = drift[sp[i]] * s.force[i];
@@ -161,8 +161,8 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
             const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
             double z[B * per];
             if (noisy)
-                detail::batch_normals<per>(seed_, RngStream::orientation,
-                                           s.p.tag.data() + first, step, m, z);
+                detail::batch_normals<per>(seed_, RngStream::orientation, s.p.tag.data() + first,
+                                           step, m, z);
             if constexpr (D == 2) {
                 double angle[B], sn[B], cs[B];
                 for (int k = 0; k < m; ++k) {

@@ -84,8 +84,14 @@ template <int D> void Evolver<D>::sort_particles() {
 
 template <int D> void Evolver<D>::compute_forces() {
     ensure_list();
-    std::fill(s_.force.begin(), s_.force.end(), Vec<D>{});
-    std::fill(s_.torque.begin(), s_.torque.end(), TorqueVec<D>{});
+    // in parallel like every per-particle loop of a step: serial, it would cap the speed-up
+    // with threads
+    const auto n = static_cast<std::int64_t>(s_.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) {
+        s_.force[i] = Vec<D>{};
+        s_.torque[i] = TorqueVec<D>{};
+    }
     for (const auto& f : forces_) f->add_forces(s_, *nl_);
     for (const auto& t : torques_) t->add_torques(s_, *nl_);
     forces_current_ = true;

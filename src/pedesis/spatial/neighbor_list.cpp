@@ -60,11 +60,20 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     std::array<double, D> reach;
     for (int a = 0; a < D; ++a)
         reach[a] = box_.periodic(a) ? 0.75 * box_.length(a) : std::numeric_limits<double>::max();
+    // Positions outside the box (but within reach) are allowed; they only cost the
+    // shortcut for the cells away from the faces below.
     std::int64_t bad = sn;
-#pragma omp parallel for schedule(static) reduction(min : bad) if (sn >= parallel_min)
+    int outside = 0;
+#pragma omp parallel for schedule(static) reduction(min                                            \
+                                                    : bad)                                         \
+    reduction(max                                                                                  \
+              : outside) if (sn >= parallel_min)
     for (std::int64_t i = 0; i < sn; ++i)
-        for (int a = 0; a < D; ++a)
+        for (int a = 0; a < D; ++a) {
             if (!(std::abs(pos[i][a]) <= reach[a])) bad = std::min(bad, i);
+            if (box_.periodic(a) && !(pos[i][a] >= box_.lo(a) && pos[i][a] < box_.hi(a)))
+                outside = 1;
+        }
     if (bad < sn) {
         std::string where = "(";
         for (int a = 0; a < D; ++a) where += fmt::format("{}{}", a ? ", " : "", pos[bad][a]);
@@ -106,9 +115,10 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
 
     const double rl2 = r_list_ * r_list_;
     // Wrap is a std::bool_constant: false for the cells away from the periodic faces,
-    // whose stencils do not wrap. There a raw difference within 2 cells is the minimum
-    // image whenever it is shorter than r_list (a longer one is not a pair either way),
-    // and skipping minimum_image takes a sizeable share off both passes.
+    // whose stencils do not wrap, when every position lies in the box. There a raw
+    // difference within 2 cells is the minimum image whenever it is shorter than r_list
+    // (a longer one is not a pair either way), and skipping minimum_image takes a
+    // sizeable share off both passes.
     auto near = [&](auto wrap, const Vec<D>& ri, const Vec<D>& rj) {
         if constexpr (decltype(wrap)::value)
             return norm2(box_.minimum_image(ri - rj)) < rl2;
@@ -122,6 +132,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
         along[a] = cells_.cells_along(a);
     }
     auto wraps = [&](std::int64_t c) {
+        if (outside) return true;
         for (int a = 0; a < D; ++a) {
             const auto ca = static_cast<int>(c % along[a]);
             c /= along[a];
@@ -165,14 +176,14 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
 
     offsets_.resize(n + 1);
     offsets_[0] = 0;
-    for_each_particle([&](auto wrap, std::uint32_t i, const Vec<D>& ri, const Range* range,
-                          int nr) {
-        std::size_t count = 0;
-        for (int r = 0; r < nr; ++r)
-            for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k)
-                count += (idx[k] != i) & near(wrap, ri, ref[k]);
-        offsets_[i + 1] = count;
-    });
+    for_each_particle(
+        [&](auto wrap, std::uint32_t i, const Vec<D>& ri, const Range* range, int nr) {
+            std::size_t count = 0;
+            for (int r = 0; r < nr; ++r)
+                for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k)
+                    count += (idx[k] != i) & near(wrap, ri, ref[k]);
+            offsets_[i + 1] = count;
+        });
     // serial: O(N) adds, far cheaper than either pass
     for (std::size_t i = 0; i < n; ++i) offsets_[i + 1] += offsets_[i];
     entries_ = offsets_[n];
@@ -183,23 +194,23 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     }
 
     std::uint32_t* const out = neighbors_.get();
-    for_each_particle([&](auto wrap, std::uint32_t i, const Vec<D>& ri, const Range* range,
-                          int nr) {
-        // Branch-free: about a third of the candidates hit, at random, so a branch would
-        // often mispredict. Every candidate is stored and the cursor advances only on a
-        // hit; once the row is full (the count pass said how long it is) the stores go
-        // to a dummy, never into the next particle's row.
-        std::uint32_t* const row = out + offsets_[i];
-        const std::size_t len = offsets_[i + 1] - offsets_[i];
-        std::uint32_t dummy;
-        std::size_t w = 0;
-        for (int r = 0; r < nr; ++r)
-            for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k) {
-                const std::uint32_t j = idx[k];
-                *(w < len ? row + w : &dummy) = j;
-                w += (j != i) & near(wrap, ri, ref[k]);
-            }
-    });
+    for_each_particle(
+        [&](auto wrap, std::uint32_t i, const Vec<D>& ri, const Range* range, int nr) {
+            // Branch-free: about a third of the candidates hit, at random, so a branch would
+            // often mispredict. Every candidate is stored and the cursor advances only on a
+            // hit; once the row is full (the count pass said how long it is) the stores go
+            // to a dummy, never into the next particle's row.
+            std::uint32_t* const row = out + offsets_[i];
+            const std::size_t len = offsets_[i + 1] - offsets_[i];
+            std::uint32_t dummy;
+            std::size_t w = 0;
+            for (int r = 0; r < nr; ++r)
+                for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k) {
+                    const std::uint32_t j = idx[k];
+                    *(w < len ? row + w : &dummy) = j;
+                    w += (j != i) & near(wrap, ri, ref[k]);
+                }
+        });
 
     n_ = n;
     ++builds_;
