@@ -8,6 +8,7 @@ packages=(
   googletest libgtest-dev
   nlohmann-json3-dev libtomlplusplus-dev libcli11-dev libfmt-dev librandom123-dev
   libomp-dev python3-numpy python3-gsd
+  libcairo2-dev ffmpeg python3-matplotlib
 )
 
 missing=()

@@ -35,6 +35,7 @@ Examples:
 """
 
 import argparse
+import signal
 import os
 import sys
 
@@ -87,7 +88,8 @@ def local_area_fraction(box, pos, diam, cell):
 
 
 def bonds(box, pos, diam, contact):
-    """Pairs (i, j), i < j, closer than contact * (r_i + r_j), by a padded cell list."""
+    """Bonded pairs (i, j), each once: centres closer than contact * (r_i + r_j)
+    (minimum image), found with a padded cell list."""
     cut = contact * diam.max()
     m = np.maximum(1, np.floor(box / cut).astype(int))
     if np.any(m < 3):  # small box: all pairs
@@ -146,8 +148,9 @@ def cluster_sizes(n, i, j):
 
 def histogram_peaks(phi, edges):
     """Histogram (share of cells per bin) and its peaks: local maxima of the lightly
-    smoothed histogram holding at least 8 % of the cells within +-1 bin, separated from
-    a neighbouring peak by a dip below 60 % of the lower of the two."""
+    smoothed histogram holding at least 8 % of the cells within +-1 bin, at least 0.25
+    in area fraction from a neighbouring peak and separated from it by a dip below 60 %
+    of the lower of the two (else the higher of the two is kept)."""
     h, _ = np.histogram(phi, bins=edges)
     h = h / max(1, len(phi))
     s = np.convolve(np.pad(h, 1, mode="edge"), [0.25, 0.5, 0.25], mode="valid")
@@ -160,7 +163,7 @@ def histogram_peaks(phi, edges):
         if peaks:
             p = peaks[-1]
             dip = s[p:k + 1].min()
-            if dip >= 0.6 * min(s[p], s[k]):
+            if dip >= 0.6 * min(s[p], s[k]) or centres[k] - centres[p] < 0.25:
                 if s[k] > s[p]:
                     peaks[-1] = k
                 continue
@@ -168,9 +171,17 @@ def histogram_peaks(phi, edges):
     return h, centres, [centres[k] for k in peaks]
 
 
-def analyse(frame, cell, contact, min_neighbours, edges):
+def analyse(frame, cell, contact, min_neighbours, bin_width):
     box, pos, diam, n = frame_arrays(frame)
     phi_cells, side = local_area_fraction(box, pos, diam, cell)
+    if bin_width is None:
+        # two particles of mean size per bin, bin edges half-way between particle
+        # counts: equal-width bins of area fraction would alias the discrete counts
+        unit = 0.25 * np.pi * np.mean(diam**2) / (side[0] * side[1])
+        bin_width = 2 * unit
+        edges = np.arange(-0.5 * unit, phi_cells.max() + bin_width + 1e-12, bin_width)
+    else:
+        edges = np.arange(0.0, phi_cells.max() + bin_width + 1e-12, bin_width)
     h, centres, peaks = histogram_peaks(phi_cells, edges)
     i, j = bonds(box, pos, diam, contact)
     z = np.bincount(i, minlength=len(pos)) + np.bincount(j, minlength=len(pos))
@@ -189,6 +200,9 @@ def analyse(frame, cell, contact, min_neighbours, edges):
 def print_histogram(r, width=50):
     print(f"local area fraction in {len(r['phi_cells'])} cells of "
           f"{r['side'][0]:.3g} x {r['side'][1]:.3g} (mean area fraction {r['phi_mean']:.3f}):")
+    if len(r["phi_cells"]) < 100:
+        print(f"  (only {len(r['phi_cells'])} cells: the histogram is noisy; a smaller --cell "
+              "gives more)")
     top = r["hist"].max()
     lo = np.nonzero(r["hist"])[0]
     first, last = (lo[0], lo[-1]) if len(lo) else (0, -1)
@@ -202,7 +216,13 @@ def print_histogram(r, width=50):
 def summary_line(r):
     peaks = ", ".join(f"{p:.2f}" for p in r["peaks"])
     mode = "bimodal" if len(r["peaks"]) >= 2 else "unimodal"
-    return (f"{mode} (peaks at {peaks}); {100 * r['dense']:.1f} % of particles have >= "
+    phi = r["phi_cells"]
+    gas, liquid = phi[phi < 0.3], phi[phi > 0.7]
+    means = (f"mean area fraction of the cells below 0.3: "
+             f"{gas.mean() if len(gas) else float('nan'):.3f} ({100 * len(gas) / len(phi):.0f} % of cells), "
+             f"above 0.7: {liquid.mean() if len(liquid) else float('nan'):.3f} "
+             f"({100 * len(liquid) / len(phi):.0f} % of cells)\n")
+    return means + (f"{mode} (peaks at {peaks}); {100 * r['dense']:.1f} % of particles have >= "
             f"{r['min_neighbours']} neighbours in contact; largest cluster of them "
             f"{100 * r['largest']:.1f} % of all particles; polar order {r['polar']:.3f}")
 
@@ -220,6 +240,7 @@ def plot(r, path, title):
     a.bar(r["centres"], 100 * r["hist"], width=step, color="tab:blue")
     for p in r["peaks"]:
         a.axvline(p, color="tab:red", ls="--", lw=1)
+    a.set_xlim(left=0)
     a.set_xlabel("local area fraction")
     a.set_ylabel("% of cells")
     a.set_title(title)
@@ -236,10 +257,12 @@ def plot(r, path, title):
 
 
 def main():
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # quiet when piped into head
     p = argparse.ArgumentParser(
-        description="Local-density histogram, largest-cluster fraction and polar order of a "
-                    "2D GSD trajectory written by pedesis (motility-induced phase separation).",
-        epilog="example: scripts/local_density_histogram.py runs/abp_mips/trajectory.gsd --every 5")
+        usage="%(prog)s TRAJECTORY.gsd [--frame N | --every K] [--cell C] [--contact F] "
+              "[--min-neighbours Z] [--bins W] [--dt DT] [--plot PNG]",
+        description=__doc__.split("\n", 3)[3],  # the text after the usage line
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("gsd", help="trajectory.gsd of a run directory")
     p.add_argument("--frame", type=int, default=-1,
                    help="frame to analyse (default: the last; negative counts from the end)")
@@ -251,8 +274,9 @@ def main():
                    help="bond if closer than this times r_i + r_j (default 1.1)")
     p.add_argument("--min-neighbours", type=int, default=5, metavar="Z",
                    help="a particle is dense with at least Z bonds (default 5; 0: all count)")
-    p.add_argument("--bins", type=float, default=0.05,
-                   help="histogram bin width in area fraction (default 0.05)")
+    p.add_argument("--bins", type=float, default=None, metavar="WIDTH",
+                   help="histogram bin width in area fraction (default: the area fraction of "
+                        "two particles in one cell, about 0.06 for cells of 5 diameters)")
     p.add_argument("--dt", type=float, default=None,
                    help="time step (default: [run] dt of config.toml next to the file)")
     p.add_argument("--plot", metavar="PNG", help="also draw the histogram and the frame")
@@ -261,7 +285,7 @@ def main():
         part = a.gsd + ".part"
         hint = f" ({part} exists: the run is still going or was stopped)" if os.path.exists(part) else ""
         p.error(f"{a.gsd}: no such file{hint}")
-    if a.cell <= 0 or a.contact <= 0 or a.bins <= 0:
+    if a.cell <= 0 or a.contact <= 0 or (a.bins is not None and a.bins <= 0):
         p.error("--cell, --contact and --bins must be positive")
     if a.min_neighbours < 0:
         p.error("--min-neighbours must be >= 0")
@@ -272,7 +296,6 @@ def main():
         if nframes == 0:
             sys.exit(f"{a.gsd}: no frames")
         d0 = float(np.mean(traj[0].particles.diameter))
-        edges = np.arange(0.0, 1.4 + 1e-9, a.bins)
         cell = a.cell * d0
 
         def when(fr):
@@ -287,7 +310,7 @@ def main():
                   f"{'polar':>6} {'cells<0.3':>9} {'cells>0.7':>9}  peaks")
             for k in frames:
                 fr = traj[k]
-                r = analyse(fr, cell, a.contact, a.min_neighbours, edges)
+                r = analyse(fr, cell, a.contact, a.min_neighbours, a.bins)
                 s = int(fr.configuration.step)
                 t = f"{s * dt:9.4g}" if dt else f"{'?':>9}"
                 pk = ", ".join(f"{x:.2f}" for x in r["peaks"])
@@ -306,7 +329,7 @@ def main():
             if not 0 <= k < nframes:
                 p.error(f"--frame {a.frame}: the file has {nframes} frames")
         fr = traj[k]
-        r = analyse(fr, cell, a.contact, a.min_neighbours, edges)
+        r = analyse(fr, cell, a.contact, a.min_neighbours, a.bins)
         print(f"\n{a.gsd}: frame {k} of {nframes} ({when(fr)}), N = {r['N']}, "
               f"box {r['box'][0]:g} x {r['box'][1]:g}")
         print_histogram(r)

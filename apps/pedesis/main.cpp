@@ -1,7 +1,11 @@
-// pedesis command line: run, init, bench. Input errors exit with 2, stopped runs with 3.
+// pedesis command line: run, init, analyze, render, bench. Input errors exit with 2, stopped runs
+// with 3.
+#include "analyze_command.hpp"
 #include "bench_abp.hpp"
 #include "bench_event.hpp"
+#include "bench_stepped.hpp"
 #include "init_command.hpp"
+#include "render_command.hpp"
 #include "run_command.hpp"
 
 #include "pedesis/core/error.hpp"
@@ -17,11 +21,14 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     pedesis::cli::add_run_command(app);
     pedesis::cli::add_init_command(app);
+    pedesis::cli::add_analyze_command(app);
+    pedesis::cli::add_render_command(app);
     auto* bench =
         app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");
     bench->require_subcommand(1);
     pedesis::cli::add_bench_event(*bench);
     pedesis::cli::add_bench_abp(*bench);
+    pedesis::cli::add_bench_stepped(*bench);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -94,3 +94,23 @@ TEST(SwimPressure, FreeAbpApproachTheSteadyState3D) {
 }
 
 } // namespace
+
+namespace {
+
+// A perfectly ordered flock without noise translates rigidly: every displacement equals
+// the mean, so the swim pressure is zero (to rounding), not n alpha v0 t / d, which a
+// sum over displacements from the start would give.
+TEST(SwimPressure, RigidlyDriftingFlockHasNone) {
+    auto s = test::random_soft_system<2>(500, 40.0, 1.0, 3);
+    for (auto& n : s.director) n = Vec<2>{{0.6, 0.8}};
+    Evolver<2> e(s, 1.0);
+    e.add_force(std::make_unique<SelfPropulsion<2>>(1.0));
+    e.add_integrator(std::make_unique<BrownianIntegrator<2>>(0.0, 1.0, 1));
+    std::vector<Vec<2>> start(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) start[s.p.tag[i]] = s.unwrapped(i);
+    e.run(1000, 0.01);
+    const double scale = 500.0 / s.box.volume() * 1.0 * 10.0 / 2.0; // n alpha v0 t / d
+    EXPECT_LT(std::abs(active_pressure(s, start, {1.0})), 1e-12 * scale);
+}
+
+} // namespace

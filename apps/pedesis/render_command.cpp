@@ -1,0 +1,5 @@
+#include "render_command.hpp"
+
+namespace pedesis::cli {
+void add_render_command(CLI::App&) {}
+} // namespace pedesis::cli
