@@ -19,6 +19,9 @@ build: deps $(BUILD)/CMakeCache.txt
 
 demo: build
 	./$(BUILD)/pedesis run examples/course_1_relaxation.toml --out runs/demo
+	./$(BUILD)/pedesis analyze speed runs/demo
+	./$(BUILD)/pedesis render runs/demo --out runs/demo/movie.mp4
+	@echo "demo: speed plot runs/demo/speed_distribution.png, movie runs/demo/movie.mp4"
 
 # ctest runs tests side by side, each with OpenMP threads: passive waiting keeps idle
 # threads from spinning on cores another test needs (10x slower on 2 busy cores).
