@@ -4,6 +4,7 @@
 #include "pedesis/io/run_config.hpp"
 #include "pedesis/run/event_run.hpp"
 #include "pedesis/run/soft_run.hpp"
+#include "pedesis/run/stepped_run.hpp"
 
 #include <iostream>
 #include <memory>
@@ -36,6 +37,8 @@ void add_run_command(CLI::App& app) {
         if (!a->restart.empty()) o.restart = a->restart;
         if (config.soft())
             run_soft_simulation(config, o, std::cout);
+        else if (config.dynamics == "stepped")
+            run_stepped_simulation(config, o, std::cout);
         else
             run_event_simulation(config, o, std::cout);
     });

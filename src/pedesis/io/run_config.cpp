@@ -136,9 +136,35 @@ std::uint64_t read_count(ConfigTable& t, const std::string& key, std::uint64_t f
     return static_cast<std::uint64_t>(*v);
 }
 
-// [event], [run] and [output] of the event-driven engine (times in simulation units).
+// [stepped] of the time-stepped hard-particle engine.
+void read_stepped_section(ConfigTable& root, RunConfig& c) {
+    if (root.has("event"))
+        throw InputError(root.where("event") +
+                         ": [event] is for dynamics = \"event\"; the stepped engine is set up "
+                         "in [stepped]");
+    auto st = root.table("stepped");
+    if (!st) throw InputError(c.file + ": dynamics = \"stepped\" needs a [stepped] table with dt");
+    c.dt = st->required_number("dt");
+    c.dt_where = st->where("dt");
+    if (!(c.dt > 0)) throw InputError(c.dt_where + ": must be positive");
+    c.max_move = st->number("max_move", c.max_move);
+    if (!(c.max_move > 0 && c.max_move <= 1))
+        throw InputError(st->where("max_move") +
+                         ": must lie in (0, 1] (a fraction of the particle's radius)");
+    st->finish();
+}
+
+// [event] (or [stepped]), [run] and [output] of the hard-particle engines (times in
+// simulation units).
 void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c) {
-    if (auto ev = root.table("event")) {
+    const bool stepped = c.dynamics == "stepped";
+    if (stepped)
+        read_stepped_section(root, c);
+    else if (root.has("stepped"))
+        throw InputError(root.where("stepped") +
+                         ": [stepped] is for dynamics = \"stepped\" (this config runs \"" +
+                         c.dynamics + "\")");
+    if (auto ev = stepped ? std::optional<ConfigTable>{} : root.table("event")) {
         c.restitution = ev->number("restitution", 1.0);
         c.wall_restitution = ev->number("wall_restitution", 1.0);
         if (!(c.restitution >= 0 && c.restitution <= 1))
@@ -154,24 +180,30 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
         ev->finish();
     }
 
+    const std::string stops = stepped ? "time, steps, collisions_per_particle"
+                                      : "time, collisions_per_particle, energy_fraction";
     auto run = root.table("run");
     if (!run)
-        throw InputError(
-            c.file +
-            ": missing [run] table (give time, collisions_per_particle or energy_fraction)");
+        throw InputError(c.file + ": missing [run] table (give at least one of " + stops + ")");
     c.stop_time = run->number("time");
     c.stop_collisions_per_particle = run->number("collisions_per_particle");
-    c.stop_energy_fraction = run->number("energy_fraction");
+    if (stepped) {
+        if (run->has("energy_fraction"))
+            throw InputError(run->where("energy_fraction") +
+                             ": the stepped engine is elastic, so the kinetic energy never "
+                             "changes; stop on time, steps or collisions_per_particle");
+        if (run->has("steps")) c.stop_steps = read_count(*run, "steps", 0, true);
+    } else {
+        c.stop_energy_fraction = run->number("energy_fraction");
+    }
     if (c.stop_time && !(*c.stop_time > 0))
         throw InputError(run->where("time") + ": must be positive");
     if (c.stop_collisions_per_particle && !(*c.stop_collisions_per_particle > 0))
         throw InputError(run->where("collisions_per_particle") + ": must be positive");
     if (c.stop_energy_fraction && !(*c.stop_energy_fraction > 0 && *c.stop_energy_fraction < 1))
         throw InputError(run->where("energy_fraction") + ": must lie in (0, 1)");
-    if (!c.stop_time && !c.stop_collisions_per_particle && !c.stop_energy_fraction)
-        throw InputError(
-            c.file +
-            ": [run] needs at least one of time, collisions_per_particle, energy_fraction");
+    if (!c.stop_time && !c.stop_collisions_per_particle && !c.stop_energy_fraction && !c.stop_steps)
+        throw InputError(c.file + ": [run] needs at least one of " + stops);
     run->finish();
 
     if (c.stop_energy_fraction && !c.stop_time && !c.stop_collisions_per_particle &&
@@ -280,10 +312,11 @@ RunConfig load_run_config(const std::string& path) {
     if (dim != 2 && dim != 3) throw InputError(root.where("dimension") + ": must be 2 or 3");
     c.dimension = static_cast<int>(dim);
     c.dynamics = root.string("dynamics").value_or("event");
-    if (c.dynamics != "event" && c.dynamics != "brownian" && c.dynamics != "langevin" &&
-        c.dynamics != "nve")
-        throw InputError(root.where("dynamics") + ": '" + c.dynamics +
-                         "' is not available (this build has: event, brownian, langevin, nve)");
+    if (c.dynamics != "event" && c.dynamics != "stepped" && c.dynamics != "brownian" &&
+        c.dynamics != "langevin" && c.dynamics != "nve")
+        throw InputError(
+            root.where("dynamics") + ": '" + c.dynamics +
+            "' is not available (this build has: event, stepped, brownian, langevin, nve)");
     if (auto s = root.integer("seed")) {
         if (*s < 0) throw InputError(root.where("seed") + ": must be >= 0");
         c.seed = static_cast<std::uint64_t>(*s);

@@ -28,8 +28,9 @@ struct SpeciesConfig {
 struct RunConfig {
     std::string file; // where it came from, for messages
     int dimension = 2;
-    std::string dynamics = "event"; // event | brownian | langevin | nve
-    bool soft() const { return dynamics != "event"; }
+    std::string dynamics = "event"; // event | stepped | brownian | langevin | nve
+    // the soft/active engines; event and stepped are the hard-particle engines
+    bool soft() const { return dynamics != "event" && dynamics != "stepped"; }
     std::uint64_t seed = 1;
 
     std::vector<double> box_lengths; // soft engines: may be empty (box from the initial file)
@@ -48,6 +49,12 @@ struct RunConfig {
     double tc = 0.0;
     double skin = -1.0;
     bool check_overlaps = false;
+
+    // [stepped] (dynamics = stepped): the time step is `dt` below, the other keys of [run]
+    // and [output] are the event engine's, and [run] steps is a stop condition too
+    double max_move = 0.5; // largest move in one step, in radii
+    std::string dt_where;  // "file:line:col: key 'stepped.dt'", for messages
+    std::optional<std::uint64_t> stop_steps;
 
     // [run] (at least one stop condition)
     std::optional<double> stop_time;
@@ -69,7 +76,7 @@ struct RunConfig {
     double list_skin = 0.5;
     std::uint64_t sort_every = 500; // steps between space-filling-curve sorts (0: never)
     std::uint64_t steps = 0;
-    double dt = 0.0;
+    double dt = 0.0; // also the time step of the stepped engine
     std::uint64_t log_every = 100;
     std::uint64_t snapshot_every = 0;   // 0: first and last frame only
     std::uint64_t checkpoint_every = 0; // 0: only at the end

@@ -27,27 +27,27 @@ constexpr int noise_batch = 64;
 // halves of each draw used (2D translation needs one Philox block and one logarithm).
 // The work runs in phases over the batch (Philox blocks, logarithms, polynomials)
 // rather than particle by particle: one particle's chain of dependent operations is
-// long, and the processor overlaps many short independent ones far better. Each
-// number is computed by the same operations as alone, so nothing depends on batching.
+// long, the processor overlaps many short independent ones far better, and each phase
+// runs several particles per SIMD instruction. Each number is computed by the same
+// operations as alone, so nothing depends on batching.
 template <int Per>
 void batch_normals(std::uint64_t seed, RngStream stream, const std::uint32_t* tag,
                    std::uint32_t step, int m, double* z) {
     constexpr int pairs = (Per + 1) / 2;
-    double u1[noise_batch * pairs], u2[noise_batch * pairs];
-    for (int k = 0; k < m; ++k) {
-        CounterRng rng(seed, stream, tag[k], step);
-        for (int p = 0; p < pairs; ++p) {
-            u1[k * pairs + p] = rng.uniform();
-            u2[k * pairs + p] = rng.uniform();
-        }
+    constexpr int B = noise_batch;
+    // draw p of particle k at [p * B + k]
+    double u1[B * pairs], u2[B * pairs];
+    for (int p = 0; p < pairs; ++p)
+        philox_uniforms(seed, stream, tag, step, static_cast<std::uint32_t>(p), m, u1 + p * B,
+                        u2 + p * B);
+    double r[B * pairs], sn[B * pairs], cs[B * pairs];
+    for (int p = 0; p < pairs; ++p) {
+        for (int k = p * B; k < p * B + m; ++k) r[k] = std::sqrt(-2.0 * std::log(u1[k]));
+        for (int k = p * B; k < p * B + m; ++k) sincos_turns(u2[k], sn[k], cs[k]);
     }
-    const int q_end = m * pairs;
-    double r[noise_batch * pairs], sn[noise_batch * pairs], cs[noise_batch * pairs];
-    for (int q = 0; q < q_end; ++q) r[q] = std::sqrt(-2.0 * std::log(u1[q]));
-    for (int q = 0; q < q_end; ++q) sincos_turns(u2[q], sn[q], cs[q]);
     for (int k = 0; k < m; ++k)
         for (int c = 0; c < Per; ++c) {
-            const int q = k * pairs + c / 2;
+            const int q = (c / 2) * B + k;
             z[k * Per + c] = r[q] * (c % 2 == 0 ? cs[q] : sn[q]);
         }
 }

@@ -115,7 +115,7 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
 
     static void pack(const Vec<D>& d, double rsum, double rc2, double (&dbuf)[chunk][D],
                      double (&r2buf)[chunk], double (&rsbuf)[chunk], int& m) {
-        const double r2 = norm2(d);
+        const double r2 = detail::squared_length(d);
         for (int a = 0; a < D; ++a) dbuf[m][a] = d[a];
         r2buf[m] = r2;
         rsbuf[m] = rsum;

@@ -49,10 +49,11 @@ template <int D> class PolarAlign final : public TorqueTerm<D> {
             Vec<D> sum{};
             if (interior)
                 for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it)
-                    add_masked(sum, dir[*it], norm2(ri - pos[*it]) <= a2);
+                    add_masked(sum, dir[*it], detail::squared_length(ri - pos[*it]) <= a2);
             else
                 for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it)
-                    add_masked(sum, dir[*it], norm2(box.minimum_image(ri - pos[*it])) <= a2);
+                    add_masked(sum, dir[*it],
+                               detail::squared_length(box.minimum_image(ri - pos[*it])) <= a2);
             s.torque[i] += J_ * cross(s.director[i], sum);
         }
     }

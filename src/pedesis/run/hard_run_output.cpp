@@ -1,0 +1,267 @@
+#include "pedesis/run/hard_run_output.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/io/binary_stream.hpp"
+#include "pedesis/io/tutorial_json.hpp"
+#include "pedesis/io/xyz_writer.hpp"
+#include "pedesis/observe/pressure.hpp"
+#include "pedesis/observe/theory.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+namespace pedesis {
+
+namespace {
+
+// Which definition the run-averaged pressure uses, for the printed summary.
+template <int D> const char* pressure_method(const Box<D>& box) {
+    bool wall = false, periodic = false;
+    for (int a = 0; a < D; ++a) (box.periodic(a) ? periodic : wall) = true;
+    if (wall && periodic) return "walls on walled axes, collision virial on periodic axes";
+    return wall ? "momentum delivered to the walls" : "collision virial";
+}
+
+} // namespace
+
+template <int D> void HardRunRecord<D>::save(std::ostream& out) const {
+    binary::put(out, initial_kinetic);
+    binary::put(out, integral_T_dt);
+    binary::put(out, last_log_time);
+    binary::put(out, last_temperature);
+    binary::put(out, last_counters);
+    binary::put(out, frames);
+    histogram.save(out);
+}
+
+template <int D> void HardRunRecord<D>::load(std::istream& in) {
+    binary::get(in, initial_kinetic);
+    binary::get(in, integral_T_dt);
+    binary::get(in, last_log_time);
+    binary::get(in, last_temperature);
+    binary::get(in, last_counters);
+    binary::get(in, frames);
+    histogram.load(in);
+}
+
+template <int D> void HardRunOutput<D>::open(const std::string& extra_columns) {
+    std::error_code ec;
+    std::filesystem::create_directories(o_.out_dir / "snapshots", ec);
+    if (ec)
+        throw InputError(o_.out_dir.string() + ": cannot create output directory: " + ec.message());
+    // results of an earlier run in this directory must not pass for this run's
+    for (const char* stale : {"summary.json", "speed_histogram.csv"})
+        std::filesystem::remove(o_.out_dir / stale, ec);
+    std::ifstream cfg(o_.config_path);
+    std::stringstream text;
+    text << cfg.rdbuf();
+    write_file_atomically(o_.out_dir / "config.toml",
+                          [&](std::ostream& out) { out << text.str(); });
+    log_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "log.csv");
+    std::string header = "time,collisions,collisions_per_particle,wall_collisions,kinetic_energy,"
+                         "energy_fraction,temperature";
+    for (const auto& s : c_.species)
+        header += ",temperature_" + s.name + ",kinetic_energy_" + s.name;
+    header += ",pressure,pressure_ideal,compressibility,mean_free_time" + extra_columns + "\n";
+    log_->append(header);
+    if (wants("xyz"))
+        trajectory_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "trajectory.xyz");
+}
+
+template <int D> bool HardRunOutput<D>::wants(const std::string& f) const {
+    return std::find(c_.formats.begin(), c_.formats.end(), f) != c_.formats.end();
+}
+
+template <int D>
+LogRow HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, double t,
+                                 const EventCounters<D>& counters) {
+    LogRow row;
+    row.kinetics = measure_kinetics(p);
+    const auto& k = row.kinetics;
+    const double T = k.temperature(D);
+    const double dt = t - record_.last_log_time;
+    const double meanT = 0.5 * (T + record_.last_temperature);
+    const double P =
+        interval_pressure(box, record_.last_counters, counters, dt, meanT, k.total_mobile);
+    record_.integral_T_dt += meanT * dt;
+    const double n = static_cast<double>(p.size());
+    const auto C = counters.pair_collisions;
+    const double P_ideal = static_cast<double>(k.total_mobile) * meanT / box.volume();
+    row.csv = fmt::format(
+        "{:.10g},{},{:.6g},{},{:.10g},{:.8g},{:.8g}", t, C, static_cast<double>(C) / n,
+        counters.wall_collisions, k.total_kinetic,
+        record_.initial_kinetic > 0 ? k.total_kinetic / record_.initial_kinetic : 0.0, T);
+    for (std::size_t s = 0; s < c_.species.size(); ++s)
+        row.csv += fmt::format(",{:.8g},{:.10g}", k.temperature(D, s), k.kinetic[s]);
+    const double mft = C ? static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C))
+                         : std::numeric_limits<double>::infinity();
+    row.csv += fmt::format(",{:.8g},{:.8g},{:.8g},{:.8g}", dt > 0 ? P : 0.0, P_ideal,
+                           dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft);
+    if (c_.histogram_start && t >= *c_.histogram_start) record_.histogram.add(p);
+    record_.last_log_time = t;
+    record_.last_temperature = T;
+    record_.last_counters = counters;
+    row.temperature = T;
+    row.pressure = P;
+    row.has_pressure = dt > 0;
+    return row;
+}
+
+template <int D> void HardRunOutput<D>::append_log(const std::string& line) {
+    log_->append(line);
+}
+
+template <int D>
+void HardRunOutput<D>::frame(const ParticleStore<D>& p, const Box<D>& box, double t) {
+    if (trajectory_) trajectory_->append(xyz_frame(p, box, t));
+    if (wants("json")) {
+        const auto j = to_tutorial_json(p, box, t);
+        write_file_atomically(o_.out_dir / "snapshots" /
+                                  fmt::format("frame_{:06d}.json", record_.frames),
+                              [&](std::ostream& out) { out << j.dump() << "\n"; });
+    }
+    ++record_.frames;
+}
+
+template <int D> void HardRunOutput<D>::write_speed_histogram(const ParticleStore<D>& final_state) {
+    SpeedHistogram histogram = record_.histogram;
+    if (!c_.histogram_start) histogram.add(final_state);
+    std::vector<std::string> names;
+    std::vector<double> masses;
+    for (const auto& s : c_.species) {
+        names.push_back(s.name);
+        masses.push_back(s.mass);
+    }
+    write_file_atomically(o_.out_dir / "speed_histogram.csv",
+                          [&](std::ostream& out) { histogram.write_csv(out, D, names, masses); });
+}
+
+template <int D> void HardRunOutput<D>::close() {
+    if (log_) log_->commit();
+    if (trajectory_) trajectory_->commit();
+}
+
+template <int D>
+nlohmann::json HardRunOutput<D>::summary(const ParticleStore<D>& p, const Box<D>& box, double t,
+                                         const EventCounters<D>& counters) const {
+    const auto k = measure_kinetics(p);
+    const double V = box.volume();
+    const double T_avg = t > 0 ? record_.integral_T_dt / t : k.temperature(D);
+    const double P = interval_pressure(box, EventCounters<D>{}, counters, t, T_avg, k.total_mobile);
+    const double P_ideal = static_cast<double>(k.total_mobile) * T_avg / V;
+    const double eta = packing_fraction(p, box);
+    const auto C = counters.pair_collisions;
+    nlohmann::json j;
+    j["dimension"] = D;
+    j["particles"] = p.size();
+    j["time"] = t;
+    j["pair_collisions"] = C;
+    j["collisions_per_particle"] = static_cast<double>(C) / static_cast<double>(p.size());
+    j["wall_collisions"] = counters.wall_collisions;
+    j["packing_fraction"] = eta;
+    j["temperature"] = k.temperature(D);
+    j["time_averaged_temperature"] = T_avg;
+    j["energy_fraction"] =
+        record_.initial_kinetic > 0 ? k.total_kinetic / record_.initial_kinetic : 0.0;
+    for (std::size_t s = 0; s < c_.species.size(); ++s)
+        j["species"][c_.species[s].name] = {{"temperature", k.temperature(D, s)},
+                                            {"kinetic_energy", k.kinetic[s]}};
+    j["pressure"] = P;
+    j["pressure_ideal_gas"] = P_ideal;
+    j["compressibility"] = P_ideal > 0 ? P / P_ideal : 0.0;
+    j["compressibility_equation_of_state"] = theory::compressibility_factor(D, eta);
+    if (C)
+        j["mean_free_time"] =
+            static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C));
+    else
+        j["mean_free_time"] = nullptr; // infinite: no collision yet
+    return j;
+}
+
+template <int D>
+void HardRunOutput<D>::print_summary(std::ostream& console, const nlohmann::json& j,
+                                     const Box<D>& box) const {
+    const double P = j["pressure"].template get<double>();
+    const double P_ideal = j["pressure_ideal_gas"].template get<double>();
+    console << fmt::format("  temperature        {:.6g} (time average {:.6g}); energy "
+                           "remaining {:.4g} of initial\n",
+                           j["temperature"].template get<double>(),
+                           j["time_averaged_temperature"].template get<double>(),
+                           j["energy_fraction"].template get<double>());
+    if (c_.species.size() > 1)
+        for (const auto& s : c_.species)
+            console << fmt::format("  temperature of {:<4s} {:.6g}\n", s.name,
+                                   j["species"][s.name]["temperature"].template get<double>());
+    console << fmt::format("  pressure           {:.6g} ({})\n", P, pressure_method(box));
+    console << fmt::format("  ideal gas N T / V  {:.6g}  ->  Z = P V / (N T) = {:.4f}\n", P_ideal,
+                           P_ideal > 0 ? P / P_ideal : 0.0);
+    console << fmt::format("  {} at eta = {:.4f}: Z = {:.4f}{}\n",
+                           D == 2 ? "hard-disk EOS (Henderson)"
+                                  : "hard-sphere EOS (Carnahan-Starling)",
+                           j["packing_fraction"].template get<double>(),
+                           j["compressibility_equation_of_state"].template get<double>(),
+                           box.any_wall() ? " (walls shift this by O(sigma/L))" : "");
+    if (!j["mean_free_time"].is_null())
+        console << fmt::format("  mean free time     {:.6g}\n",
+                               j["mean_free_time"].template get<double>());
+}
+
+template <int D> void HardRunOutput<D>::write_summary(const nlohmann::json& j) const {
+    write_file_atomically(o_.out_dir / "summary.json",
+                          [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+}
+
+template <int D> std::string box_text(const Box<D>& box) {
+    std::string s;
+    for (int a = 0; a < D; ++a)
+        s += fmt::format("{}{:g}{}", a ? " x " : "", box.length(a), box.periodic(a) ? "p" : "w");
+    return s;
+}
+
+template <int D> double packing_fraction(const ParticleStore<D>& p, const Box<D>& box) {
+    double v = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const double r = p.radius(i);
+        v += D == 2 ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    }
+    return v / box.volume();
+}
+
+double next_multiple(double t, double interval) {
+    return (std::floor(t / interval + 1e-9) + 1.0) * interval;
+}
+
+template <int D>
+void check_checkpoint_matches(const std::vector<Species>& table, const Box<D>& box,
+                              const RunConfig& c) {
+    if (table.size() != c.species.size()) throw InputError("species do not match " + c.file);
+    for (std::size_t k = 0; k < table.size(); ++k)
+        if (table[k].name != c.species[k].name || table[k].radius != c.species[k].radius ||
+            !(table[k].mass == c.species[k].mass))
+            throw InputError("species '" + table[k].name + "' does not match " + c.file);
+    for (int a = 0; a < D; ++a)
+        if (box.length(a) != c.box_lengths[static_cast<std::size_t>(a)] ||
+            box.periodic(a) != c.periodic[static_cast<std::size_t>(a)])
+            throw InputError("box does not match " + c.file);
+}
+
+template struct HardRunRecord<2>;
+template struct HardRunRecord<3>;
+template class HardRunOutput<2>;
+template class HardRunOutput<3>;
+template std::string box_text(const Box<2>&);
+template std::string box_text(const Box<3>&);
+template double packing_fraction(const ParticleStore<2>&, const Box<2>&);
+template double packing_fraction(const ParticleStore<3>&, const Box<3>&);
+template void check_checkpoint_matches(const std::vector<Species>&, const Box<2>&,
+                                       const RunConfig&);
+template void check_checkpoint_matches(const std::vector<Species>&, const Box<3>&,
+                                       const RunConfig&);
+
+} // namespace pedesis

@@ -1,0 +1,418 @@
+#include "pedesis/stepped/stepped_engine.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/event/collision_rules.hpp"
+#include "pedesis/io/binary_stream.hpp"
+#include "pedesis/stepped/rewind.hpp"
+#include "pedesis/stepped/time_step.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pedesis {
+
+namespace {
+
+std::string tag_name(std::uint32_t tag) {
+    return "particle " + std::to_string(tag);
+}
+
+void validate(const SteppedParams& p) {
+    if (!(p.dt > 0.0 && std::isfinite(p.dt)))
+        throw InputError("stepped.dt must be a positive finite number");
+    if (!(p.max_move > 0.0 && p.max_move <= 1.0))
+        throw InputError("stepped.max_move must lie in (0, 1]");
+    if (p.max_events_per_step < 1) throw InputError("stepped engine: max_events_per_step < 1");
+}
+
+} // namespace
+
+template <int D>
+SteppedEngine<D>::SteppedEngine(ParticleStore<D> particles, const Box<D>& box,
+                                const SteppedParams& params)
+    : p_(std::move(particles)), box_(box), params_(params), dt_(params.dt) {
+    if (p_.size() == 0) throw InputError("stepped engine: no particles (N = 0)");
+    if (p_.size() > std::numeric_limits<std::uint32_t>::max() / 2)
+        throw InputError("stepped engine: too many particles");
+    validate(params_);
+    double max_radius = 0.0;
+    for (const auto& s : p_.species_table) {
+        if (!(s.radius > 0.0 && std::isfinite(s.radius)))
+            throw InputError("species '" + s.name + "': radius must be positive and finite");
+        if (!(s.mass > 0.0) || std::isnan(s.mass))
+            throw InputError("species '" + s.name +
+                             "': mass must be positive (inf for a fixed obstacle)");
+        max_radius = std::max(max_radius, s.radius);
+    }
+    for (int a = 0; a < D; ++a) {
+        if (box_.length(a) < 2.0 * max_radius)
+            throw InputError("box: length " + std::to_string(box_.length(a)) + " along axis " +
+                             std::to_string(a) + " is smaller than one particle (diameter " +
+                             std::to_string(2.0 * max_radius) + ")");
+        // the minimum image of an overlapping pair must be unique
+        if (box_.periodic(a) && !(box_.length(a) > 4.0 * max_radius))
+            throw InputError("box: periodic length " + std::to_string(box_.length(a)) +
+                             " must exceed twice the largest contact distance (" +
+                             std::to_string(4.0 * max_radius) + ")");
+    }
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+        if (!all_finite(p_.position[i]) || !all_finite(p_.velocity[i]))
+            throw InputError(tag_name(p_.tag[i]) + ": position or velocity is not a finite number");
+        if (std::isinf(p_.mass(i))) p_.velocity[i] = Vec<D>{}; // obstacles never move
+        const double r = p_.radius(i);
+        if (!box_.contains(p_.position[i], r * (1.0 - 1e-12)))
+            throw InputError(fmt::format(
+                "{} lies outside the walls (centre must be at least its radius {} from every "
+                "wall)",
+                tag_name(p_.tag[i]), r));
+        box_.wrap(p_.position[i]);
+    }
+    setup();
+    check_no_overlap(1e-10);
+}
+
+template <int D> void SteppedEngine<D>::setup() {
+    radius_.clear();
+    inv_mass_.clear();
+    max_speed2_.clear();
+    double max_radius = 0.0;
+    for (const auto& s : p_.species_table) {
+        radius_.push_back(s.radius);
+        inv_mass_.push_back(s.inverse_mass());
+        const double v = params_.max_move * s.radius / dt_;
+        max_speed2_.push_back(v * v);
+        max_radius = std::max(max_radius, s.radius);
+    }
+    any_periodic_ = false;
+    for (int a = 0; a < D; ++a) {
+        walled_[a] = !box_.periodic(a);
+        any_periodic_ = any_periodic_ || box_.periodic(a);
+    }
+    // Cells at least one contact distance wide find every overlap in the 3^D cells around
+    // a particle; in a dilute gas they are widened to about one particle per cell, so
+    // that the scan does not visit mostly empty cells.
+    const double per_particle = std::pow(box_.volume() / static_cast<double>(p_.size()), 1.0 / D);
+    cells_ = CellList<D>(box_, std::max(2.0 * max_radius, per_particle));
+    cells_.build(p_.position);
+    segment_start_.assign(p_.size(), 0.0);
+    events_.assign(p_.size(), 0);
+    heap_.clear();
+}
+
+template <int D> double SteppedEngine<D>::kinetic_energy() const {
+    double k = 0.0;
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+        const double im = inv_mass_[p_.species[i]];
+        if (im > 0.0) k += 0.5 * norm2(p_.velocity[i]) / im;
+    }
+    return k;
+}
+
+// Independent speeds drawn in a run as long again as this one so far: N at the start
+// and two per pair collision, doubled.
+template <int D> double SteppedEngine<D>::speed_samples_so_far() const {
+    return 2.0 *
+           (static_cast<double>(p_.size()) + 2.0 * static_cast<double>(counters_.pair_collisions));
+}
+
+template <int D> void SteppedEngine<D>::check_speeds() const {
+    bool too_fast = false;
+    for (std::size_t i = 0; i < p_.size(); ++i)
+        too_fast = too_fast || norm2(p_.velocity[i]) > max_speed2_[p_.species[i]];
+    if (!too_fast) return;
+    const FastestParticle f = fastest_particle(p_, dt_);
+    throw RunError(fmt::format(
+        "stepped engine: at step {} {} (species '{}') would move {:.4g} = {:.3g} radii in one "
+        "step of dt = {:g}, more than max_move = {:g} radii, so it could pass through another "
+        "particle or a wall; reduce [stepped] dt to {:.2g} or less",
+        step_, tag_name(p_.tag[f.index]), p_.species_table[p_.species[f.index]].name, f.speed * dt_,
+        f.radii_per_step, dt_, params_.max_move,
+        suggested_time_step(p_, params_.max_move, speed_samples_so_far())));
+}
+
+template <int D> void SteppedEngine<D>::step() {
+    check_speeds();
+    const auto n = static_cast<std::uint32_t>(p_.size());
+    for (std::uint32_t i = 0; i < n; ++i) {
+        p_.position[i] += p_.velocity[i] * dt_;
+        if (any_periodic_) box_.wrap(p_.position[i]);
+        segment_start_[i] = 0.0;
+        events_[i] = 0;
+    }
+    cells_.build(p_.position);
+    heap_.clear();
+    for (std::uint32_t i = 0; i < n; ++i) {
+        find_wall_crossing(i);
+        cells_.for_each_near(p_.position[i], [&](std::uint32_t j) {
+            if (j > i) consider(i, j);
+        });
+    }
+    while (!heap_.empty()) {
+        std::pop_heap(heap_.begin(), heap_.end(), Later{});
+        const Event e = heap_.back();
+        heap_.pop_back();
+        if (events_[e.i] != e.seen_i || events_[e.j] != e.seen_j) continue; // superseded
+        if (e.wall == pair_event)
+            collide(e);
+        else
+            bounce(e);
+    }
+    ++step_;
+}
+
+template <int D> void SteppedEngine<D>::push(const Event& e) {
+    heap_.push_back(e);
+    std::push_heap(heap_.begin(), heap_.end(), Later{});
+}
+
+// The earliest wall this particle's current segment has crossed. A centre past a wall
+// but moving back in can only be a rounding error of an earlier mirror: it is put on
+// the wall.
+template <int D> void SteppedEngine<D>::find_wall_crossing(std::uint32_t i) {
+    const double r = radius_[p_.species[i]];
+    Event best{dt_ + 1.0, i, i, events_[i], events_[i], 0, false};
+    for (int a = 0; a < D; ++a) {
+        if (!walled_[a]) continue;
+        double& x = p_.position[i][a];
+        const double v = p_.velocity[i][a];
+        const double lo = box_.lo(a) + r, hi = box_.hi(a) - r;
+        int side;
+        double overshoot;
+        if (x > hi) {
+            side = 1;
+            overshoot = x - hi;
+        } else if (x < lo) {
+            side = 0;
+            overshoot = lo - x;
+        } else {
+            continue;
+        }
+        if (side == 1 ? !(v > 0.0) : !(v < 0.0)) {
+            x = side == 1 ? hi : lo;
+            continue;
+        }
+        const double when = std::max(segment_start_[i], dt_ - overshoot / std::abs(v));
+        if (when < best.when) {
+            best.when = when;
+            best.wall = 2 * a + side;
+        }
+    }
+    if (best.when <= dt_) push(best);
+}
+
+template <int D> void SteppedEngine<D>::find_overlaps_of(std::uint32_t i, std::uint32_t skip) {
+    cells_.for_each_near(p_.position[i], [&](std::uint32_t j) {
+        if (j != i && j != skip) consider(i, j);
+    });
+}
+
+// An overlapping pair collided when it entered the overlap, if that lies on the current
+// segments of both; if the overlap was there already when the later segment began (a
+// grazing collision missed in an earlier step or segment), it collides at that moment if
+// it approaches then, and is left to separate otherwise.
+template <int D>
+void SteppedEngine<D>::overlapping(std::uint32_t i, std::uint32_t j, const Vec<D>& dr,
+                                   double sigma) {
+    const Vec<D> dv = p_.velocity[i] - p_.velocity[j];
+    const double tau = contact_rewind_time(dr, dv, sigma);
+    if (tau < 0.0) return; // no relative motion
+    const double start = std::max(segment_start_[i], segment_start_[j]);
+    double when = dt_ - tau;
+    bool late = false;
+    if (!(when >= start)) {
+        if (dot(dr, dv) - norm2(dv) * (dt_ - start) >= 0.0) return;
+        when = start;
+        late = true;
+    }
+    const std::uint32_t a = std::min(i, j), b = std::max(i, j);
+    push(Event{when, a, b, events_[a], events_[b], pair_event, late});
+}
+
+template <int D> void SteppedEngine<D>::collide(const Event& e) {
+    const std::uint32_t i = e.i, j = e.j;
+    const double back = dt_ - e.when;
+    const Vec<D> vi0 = p_.velocity[i], vj0 = p_.velocity[j];
+    Vec<D> dr = p_.position[i] - p_.position[j];
+    if (any_periodic_) dr = box_.minimum_image(dr);
+    dr -= (vi0 - vj0) * back; // the separation at the collision
+    const double r = norm(dr);
+    if (!(r > 0.0)) return; // coincident centres: no line of centres (never from a valid state)
+    const Vec<D> n = dr * (1.0 / r);
+    if (dot(vi0 - vj0, n) >= 0.0) return; // touching while separating, by rounding
+    const PairImpulse imp = collide_pair(p_.velocity[i], p_.velocity[j], n,
+                                         inv_mass_[p_.species[i]], inv_mass_[p_.species[j]], 1.0);
+    p_.position[i] += (p_.velocity[i] - vi0) * back;
+    p_.position[j] += (p_.velocity[j] - vj0) * back;
+    for (int a = 0; a < D; ++a) counters_.virial[a] += imp.impulse * n[a] * dr[a];
+    ++counters_.pair_collisions;
+    if (e.late) ++stats_.late_collisions;
+    moved(i, e.when);
+    moved(j, e.when);
+    find_wall_crossing(i);
+    find_wall_crossing(j);
+    find_overlaps_of(i, i);
+    find_overlaps_of(j, i);
+}
+
+template <int D> void SteppedEngine<D>::bounce(const Event& e) {
+    const std::uint32_t i = e.i;
+    const int a = e.wall / 2, side = e.wall % 2;
+    const double r = radius_[p_.species[i]];
+    double& x = p_.position[i][a];
+    if (side == 1)
+        x = 2.0 * (box_.hi(a) - r) - x;
+    else
+        x = 2.0 * (box_.lo(a) + r) - x;
+    const double im = inv_mass_[p_.species[i]];
+    counters_.wall_impulse[a][side] += collide_wall(p_.velocity[i][a], 1.0 / im, 1.0);
+    ++counters_.wall_collisions;
+    moved(i, e.when);
+    find_wall_crossing(i);
+    find_overlaps_of(i, i);
+}
+
+// Bookkeeping after an event of particle i at `when`: a new segment, a new version of
+// its events, its cell.
+template <int D> void SteppedEngine<D>::moved(std::uint32_t i, double when) {
+    if (any_periodic_) box_.wrap(p_.position[i]);
+    segment_start_[i] = when;
+    ++events_[i];
+    cells_.remove(i);
+    cells_.insert(i, p_.position[i]);
+    // a fixed obstacle is only hit: many hits in one step are no sign of a dt too large
+    if (inv_mass_[p_.species[i]] == 0.0) return;
+    if (events_[i] > 1) ++stats_.chained_events;
+    stats_.most_events_in_step = std::max(stats_.most_events_in_step, events_[i]);
+    if (events_[i] > params_.max_events_per_step)
+        throw RunError(fmt::format(
+            "stepped engine: at step {} {} had more than {} collisions in one step (the "
+            "particles around it are packed too tightly for dt = {:g}); reduce [stepped] dt",
+            step_, tag_name(p_.tag[i]), params_.max_events_per_step, dt_));
+}
+
+template <int D> void SteppedEngine<D>::check_no_overlap(double rel_tol) const {
+    double max_radius = 0.0;
+    for (double r : radius_) max_radius = std::max(max_radius, r);
+    CellList<D> cells(box_, 2.0 * max_radius);
+    cells.build(p_.position);
+    for (std::uint32_t i = 0; i < p_.size(); ++i) {
+        cells.for_each_near(p_.position[i], [&](std::uint32_t j) {
+            if (j <= i) return;
+            const double d = norm(box_.minimum_image(p_.position[i] - p_.position[j]));
+            const double c = contact(i, j);
+            if (d < c * (1.0 - rel_tol)) {
+                const std::string m = fmt::format(
+                    "{} and {} overlap: centres {:g} apart, contact distance {:g} (overlap {:g})",
+                    tag_name(p_.tag[i]), tag_name(p_.tag[j]), d, c, c - d);
+                if (step_ == 0 && counters_.pair_collisions == 0) throw InputError(m);
+                throw RunError(fmt::format("at step {} (t = {:g}): {}", step_, time(), m));
+            }
+        });
+    }
+}
+
+namespace {
+constexpr std::uint64_t checkpoint_magic = 0x5054535344455045ull; // "EPEDSSTP" in memory order
+constexpr std::uint32_t checkpoint_version = 1;
+} // namespace
+
+template <int D> void SteppedEngine<D>::save(std::ostream& out) const {
+    using binary::put;
+    put(out, checkpoint_magic);
+    put(out, checkpoint_version);
+    put<std::int32_t>(out, D);
+    put<std::uint64_t>(out, p_.species_table.size());
+    for (const auto& s : p_.species_table) {
+        put(out, s.name);
+        put(out, s.radius);
+        put(out, s.mass);
+    }
+    for (int a = 0; a < D; ++a) {
+        put(out, box_.length(a));
+        put<std::uint8_t>(out, box_.periodic(a));
+    }
+    put(out, dt_);
+    put(out, step_);
+    put(out, step_base_);
+    put(out, time_base_);
+    put(out, counters_);
+    put(out, stats_);
+    put(out, p_.position);
+    put(out, p_.velocity);
+    put(out, p_.tag);
+    put(out, p_.species);
+}
+
+template <int D>
+SteppedEngine<D> SteppedEngine<D>::load(std::istream& in, const SteppedParams& params) {
+    using binary::get;
+    std::uint64_t magic = 0;
+    std::uint32_t version = 0;
+    std::int32_t dim = 0;
+    get(in, magic);
+    if (magic != checkpoint_magic) throw InputError("checkpoint: not a pedesis stepped checkpoint");
+    get(in, version);
+    if (version != checkpoint_version)
+        throw InputError("checkpoint: unsupported version " + std::to_string(version));
+    get(in, dim);
+    if (dim != D)
+        throw InputError("checkpoint: written for dimension " + std::to_string(dim) +
+                         ", config asks for " + std::to_string(D));
+    validate(params);
+    SteppedEngine e;
+    e.params_ = params;
+    std::uint64_t ns = 0;
+    get(in, ns);
+    if (ns == 0 || ns > 65535) throw InputError("checkpoint: corrupt species count");
+    e.p_.species_table.resize(ns);
+    for (auto& s : e.p_.species_table) {
+        get(in, s.name);
+        get(in, s.radius);
+        get(in, s.mass);
+        if (!(s.radius > 0.0) || !(s.mass > 0.0))
+            throw InputError("checkpoint: corrupt species '" + s.name + "'");
+    }
+    Vec<D> L;
+    std::array<bool, D> periodic{};
+    for (int a = 0; a < D; ++a) {
+        std::uint8_t flag = 0;
+        get(in, L[a]);
+        get(in, flag);
+        periodic[a] = flag != 0;
+    }
+    e.box_ = Box<D>(L, periodic);
+    double saved_dt = 0.0;
+    get(in, saved_dt);
+    get(in, e.step_);
+    get(in, e.step_base_);
+    get(in, e.time_base_);
+    get(in, e.counters_);
+    get(in, e.stats_);
+    get(in, e.p_.position);
+    get(in, e.p_.velocity);
+    get(in, e.p_.tag);
+    get(in, e.p_.species);
+    const std::size_t n = e.p_.position.size();
+    if (n == 0 || e.p_.velocity.size() != n || e.p_.tag.size() != n || e.p_.species.size() != n ||
+        e.step_base_ > e.step_)
+        throw InputError("checkpoint: inconsistent array sizes (corrupt file)");
+    for (auto s : e.p_.species)
+        if (s >= ns) throw InputError("checkpoint: corrupt species index");
+    e.dt_ = saved_dt;
+    if (params.dt != saved_dt) {
+        // a new dt: time goes on from here in steps of it
+        e.time_base_ = e.time();
+        e.step_base_ = e.step_;
+        e.dt_ = params.dt;
+    }
+    e.setup();
+    return e;
+}
+
+template class SteppedEngine<2>;
+template class SteppedEngine<3>;
+
+} // namespace pedesis

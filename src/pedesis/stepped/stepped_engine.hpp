@@ -1,0 +1,154 @@
+#pragma once
+// Time-stepped dynamics of hard disks (D = 2) and spheres (D = 3): the a-posteriori
+// scheme of seeds 002 and 003, made exact for every collision it sees.
+//
+// One step of length dt:
+// 1. every particle moves in a straight line for dt, walls or not;
+// 2. the shared cell list finds every overlapping pair in O(N), and every centre that
+//    ended past a wall;
+// 3. each overlapping pair is rewound to the moment it entered the overlap (seed 002's
+//    quadratic formula, stepped/rewind.hpp) and each wall crossing to the moment of
+//    crossing; these events are processed in time order, earliest first. A pair goes
+//    back to contact, collides elastically along the line of centres (unequal masses
+//    and radii: the event engine's rule) and goes forward to the end of the step on its
+//    new velocities; a particle past a wall is mirrored back and the wall's momentum
+//    counted;
+// 4. a particle that took part in an event moves on a new straight segment from that
+//    moment, so its overlaps and wall crossings are found again on that segment, and
+//    events computed before it changed are dropped. The loop ends when no overlap is
+//    left that was entered during (or approaches at the start of) the current segments.
+//
+// So every event whose overlap lasts to the end of a step is resolved exactly and in
+// the right order, however many events a particle has in one step. What is missed: a
+// pair whose straight paths cross only the rim of the overlap (a grazing collision, in
+// and out within one step). For relative speed g, contact distance sigma and
+// x = g dt / sigma that is a fraction x^2 / 24 (2D) or x^2 / 12 (3D) of collisions, each
+// missing a momentum transfer of at most mu g x / 2. A particle whose segment starts
+// inside such a missed overlap collides at the segment start, from an overlapping
+// position (a "late" collision). Energy is conserved by every collision, late or not,
+// and momentum too apart from what the walls take, to rounding.
+#include "pedesis/core/box.hpp"
+#include "pedesis/core/particles.hpp"
+#include "pedesis/event/event_engine.hpp" // EventCounters: the running totals both engines keep
+#include "pedesis/spatial/cell_list.hpp"
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <vector>
+
+namespace pedesis {
+
+struct SteppedParams {
+    double dt = 0.0;
+    double max_move = 0.5; // largest distance moved in one step, in units of the own radius
+    std::uint32_t max_events_per_step = 64; // per particle (pairs and walls); more stops the run
+};
+
+// Diagnostics of the approximation, since the engine was created (or restored).
+struct SteppedStats {
+    std::uint64_t late_collisions = 0;     // resolved from an overlap at a segment start
+    std::uint64_t chained_events = 0;      // events of a particle that already had one that step
+    std::uint32_t most_events_in_step = 0; // by one particle in one step
+};
+
+template <int D> class SteppedEngine {
+  public:
+    SteppedEngine(ParticleStore<D> particles, const Box<D>& box, const SteppedParams& params);
+
+    // One step of dt. Throws RunError before moving anything if a particle would move
+    // more than max_move radii, and during the step if a particle has more than
+    // max_events_per_step events.
+    void step();
+
+    std::uint64_t steps() const { return step_; }
+    // base + (steps since base) x dt: a product, not a running sum
+    double time() const { return time_base_ + static_cast<double>(step_ - step_base_) * dt_; }
+    double dt() const { return dt_; }
+    const SteppedParams& params() const { return params_; }
+    const Box<D>& box() const { return box_; }
+    // positions are those at time(), inside the walls and wrapped on periodic axes
+    const ParticleStore<D>& particles() const { return p_; }
+    const EventCounters<D>& counters() const { return counters_; }
+    const SteppedStats& stats() const { return stats_; }
+    std::size_t size() const { return p_.size(); }
+    double kinetic_energy() const;
+
+    // Throws if two particles overlap by more than rel_tol of their contact distance:
+    // InputError before the first step (a bad initial state), RunError after.
+    void check_no_overlap(double rel_tol) const;
+
+    // Exact state, so that a restored engine continues bit for bit. A restored engine
+    // takes dt from `params`; if it differs from the saved one, time goes on from the
+    // saved time in steps of the new dt.
+    void save(std::ostream& out) const;
+    static SteppedEngine load(std::istream& in, const SteppedParams& params);
+
+  private:
+    static constexpr std::int32_t pair_event = -1;
+
+    struct Event {
+        double when;                  // within the step, in [0, dt]
+        std::uint32_t i, j;           // a pair: i < j; a wall: j = i
+        std::uint32_t seen_i, seen_j; // events of i and j in this step when computed
+        std::int32_t wall;            // pair_event, or 2 axis + side (0 low, 1 high)
+        bool late;
+    };
+    struct Later {
+        bool operator()(const Event& a, const Event& b) const {
+            if (a.when != b.when) return a.when > b.when;
+            if (a.i != b.i) return a.i > b.i;
+            if (a.j != b.j) return a.j > b.j;
+            return a.wall > b.wall;
+        }
+    };
+
+    SteppedEngine() = default;
+    void setup();
+    void check_speeds() const;
+    double speed_samples_so_far() const;
+    void find_wall_crossing(std::uint32_t i);
+    void find_overlaps_of(std::uint32_t i, std::uint32_t skip);
+    // Most pairs of the cell scan do not touch: that test is here, small enough to inline
+    // into the scan; the rest of the work is out of line.
+    void consider(std::uint32_t i, std::uint32_t j) {
+        Vec<D> dr = p_.position[i] - p_.position[j];
+        if (any_periodic_) dr = box_.minimum_image(dr);
+        const double sigma = contact(i, j);
+        if (norm2(dr) < sigma * sigma) overlapping(i, j, dr, sigma);
+    }
+    void overlapping(std::uint32_t i, std::uint32_t j, const Vec<D>& dr, double sigma);
+    void push(const Event& e);
+    void collide(const Event& e);
+    void bounce(const Event& e);
+    void moved(std::uint32_t i, double when);
+    double contact(std::uint32_t i, std::uint32_t j) const {
+        return radius_[p_.species[i]] + radius_[p_.species[j]];
+    }
+
+    ParticleStore<D> p_;
+    Box<D> box_;
+    SteppedParams params_;
+    double dt_ = 0.0;
+    std::uint64_t step_ = 0;
+    std::uint64_t step_base_ = 0;
+    double time_base_ = 0.0;
+
+    std::vector<double> radius_;        // per species
+    std::vector<double> inv_mass_;      // per species
+    std::vector<double> max_speed2_;    // per species: (max_move r / dt)^2
+    std::vector<double> segment_start_; // per particle: when its straight segment began
+    std::vector<std::uint32_t> events_; // per particle: events in this step
+    std::vector<Event> heap_;
+    std::array<bool, D> walled_{};
+    bool any_periodic_ = false;
+
+    CellList<D> cells_;
+    EventCounters<D> counters_;
+    SteppedStats stats_;
+};
+
+extern template class SteppedEngine<2>;
+extern template class SteppedEngine<3>;
+
+} // namespace pedesis

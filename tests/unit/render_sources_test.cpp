@@ -1,0 +1,194 @@
+// Which file of a run directory render reads, and what each source adds from config.toml:
+// GSD before XYZ before JSON snapshots, the ".part" file of an unfinished run, the time of
+// GSD frames from dt, walls and species names for formats that do not store them, and
+// clear errors for directories that hold nothing to render.
+#include "pedesis/core/error.hpp"
+#include "pedesis/io/gsd_writer.hpp"
+#include "pedesis/io/tutorial_json.hpp"
+#include "pedesis/io/xyz_writer.hpp"
+#include "pedesis/render/run_directory.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include "support/soft_builder.hpp"
+
+using namespace pedesis;
+using namespace pedesis::render;
+namespace fs = std::filesystem;
+
+namespace {
+
+class RenderSources : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir = fs::temp_directory_path() / ("pedesis_render_sources_" + std::string(info->name()) +
+                                           "_" + std::to_string(::getpid()));
+        fs::remove_all(dir);
+        fs::create_directories(dir / "snapshots");
+    }
+    void TearDown() override { fs::remove_all(dir); }
+
+    void write(const fs::path& name, const std::string& text) {
+        std::ofstream(dir / name, std::ios::binary) << text;
+    }
+    std::string error_of(const fs::path& run, SourceKind kind = SourceKind::automatic) {
+        try {
+            open_run_directory(run, kind);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "(no error)";
+    }
+
+    fs::path dir;
+};
+
+// Two species, the second written after the first in tag order.
+SoftState<2> sample_state(std::uint64_t step) {
+    SoftState<2> s = test::random_soft_system<2>(12, 10.0, 0.5, step + 1);
+    s.p.species_table = {Species{"small", 0.5, 1.0}, Species{"big", 1.0, 2.0}};
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        s.p.species[i] = static_cast<std::uint16_t>(s.p.tag[i] >= 8);
+        s.p.velocity[i][0] = 0.5 * static_cast<double>(i);
+    }
+    s.step = step;
+    s.time = 0.01 * static_cast<double>(step);
+    return s;
+}
+
+void write_all_formats(const fs::path& dir, int frames) {
+    GsdWriter<2> gsd(dir / "trajectory.gsd");
+    std::string xyz;
+    for (int k = 0; k < frames; ++k) {
+        const SoftState<2> s = sample_state(static_cast<std::uint64_t>(10 * k));
+        gsd.append(s);
+        xyz += xyz_frame(s.p, s.box, s.time);
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%06d.json", k);
+        std::ofstream(dir / "snapshots" / name) << to_tutorial_json(s).dump();
+    }
+    gsd.commit();
+    std::ofstream(dir / "trajectory.xyz") << xyz;
+}
+
+TEST_F(RenderSources, PrefersGsdThenXyzThenJson) {
+    write_all_formats(dir, 3);
+    write("config.toml", "dimension = 2\n[run]\ndt = 0.01\n");
+    auto run = open_run_directory(dir, SourceKind::automatic);
+    EXPECT_NE(run.source->description().find("trajectory.gsd (GSD)"), std::string::npos);
+    EXPECT_EQ(run.source->frames(), 3u);
+    EXPECT_TRUE(run.notes.empty());
+
+    fs::remove(dir / "trajectory.gsd");
+    run = open_run_directory(dir, SourceKind::automatic);
+    EXPECT_NE(run.source->description().find("trajectory.xyz (extended XYZ)"), std::string::npos);
+
+    fs::remove(dir / "trajectory.xyz");
+    run = open_run_directory(dir, SourceKind::automatic);
+    EXPECT_NE(run.source->description().find("frame_*.json (tutorial JSON)"), std::string::npos);
+    EXPECT_EQ(run.source->frames(), 3u);
+}
+
+TEST_F(RenderSources, EveryFormatGivesTheSameFrame) {
+    write_all_formats(dir, 2);
+    write("config.toml", "dimension = 2\n[box]\nboundary = [\"wall\", \"periodic\"]\n"
+                         "[[species]]\nname = \"small\"\n[[species]]\nname = \"big\"\n"
+                         "[run]\ndt = 0.01\n");
+    const SoftState<2> s = sample_state(10);
+    const auto index = s.p.index_of_tags();
+    for (SourceKind kind : {SourceKind::gsd, SourceKind::xyz, SourceKind::json}) {
+        const auto run = open_run_directory(dir, kind);
+        const Frame f = run.source->frame(1);
+        const double tolerance = kind == SourceKind::gsd ? 1e-5 : 0.0; // GSD stores float32
+        EXPECT_EQ(f.dimension, 2);
+        EXPECT_EQ(f.box_length[2], 0.0);
+        ASSERT_TRUE(f.time.has_value());
+        EXPECT_NEAR(*f.time, 0.1, 1e-15);
+        EXPECT_EQ(f.species_names, (std::vector<std::string>{"small", "big"}));
+        ASSERT_EQ(f.size(), s.size());
+        for (std::size_t row = 0; row < f.size(); ++row) {
+            const std::uint32_t i = index[row];
+            EXPECT_EQ(f.species[row], s.p.species[i]);
+            EXPECT_NEAR(f.radius[row], s.p.radius(i), tolerance);
+            for (int a = 0; a < 2; ++a) {
+                const auto c = static_cast<std::size_t>(a);
+                EXPECT_NEAR(f.box_lo[c], -5.0, tolerance);
+                EXPECT_NEAR(f.box_length[c], 10.0, tolerance);
+                EXPECT_NEAR(f.position[row][c], s.p.position[i][a], tolerance);
+                ASSERT_EQ(f.velocity.size(), f.size());
+                EXPECT_NEAR(f.velocity[row][c], s.p.velocity[i][a], tolerance);
+                if (kind != SourceKind::xyz) { // XYZ stores no director
+                    ASSERT_EQ(f.director.size(), f.size());
+                    EXPECT_NEAR(f.director[row][c], s.director[i][a], 1e-6);
+                }
+            }
+        }
+        // XYZ stores its own pbc flags (all periodic here); the others take config.toml's
+        const bool wall_x = kind != SourceKind::xyz;
+        EXPECT_EQ(f.periodic[0], !wall_x);
+        EXPECT_TRUE(f.periodic[1]);
+        if (kind == SourceKind::xyz) {
+            EXPECT_TRUE(f.director.empty());
+        }
+    }
+}
+
+TEST_F(RenderSources, GsdWithoutDtShowsOnlyTheStep) {
+    write_all_formats(dir, 2);
+    const Frame f = open_run_directory(dir, SourceKind::gsd).source->frame(1);
+    EXPECT_FALSE(f.time.has_value());
+    ASSERT_TRUE(f.step.has_value());
+    EXPECT_EQ(*f.step, 10u);
+    EXPECT_EQ(f.species_names, (std::vector<std::string>{"small", "big"}));
+}
+
+TEST_F(RenderSources, UnfinishedRunIsReadFromItsPartFileWithANote) {
+    const SoftState<2> s = sample_state(0);
+    const std::string frame = xyz_frame(s.p, s.box, 0.0);
+    write("trajectory.xyz.part", frame + frame + frame.substr(0, frame.size() / 3));
+    const auto run = open_run_directory(dir, SourceKind::automatic);
+    EXPECT_EQ(run.source->frames(), 2u);
+    ASSERT_EQ(run.notes.size(), 1u);
+    EXPECT_NE(run.notes[0].find("trajectory.xyz.part"), std::string::npos);
+    EXPECT_NE(run.notes[0].find("unfinished run"), std::string::npos);
+}
+
+TEST_F(RenderSources, DirectoriesWithNothingToRenderAreRefused) {
+    EXPECT_NE(error_of(dir / "missing").find("missing: no such run directory"), std::string::npos);
+    write("file.txt", "x");
+    EXPECT_NE(error_of(dir / "file.txt").find("not a directory"), std::string::npos);
+    EXPECT_NE(error_of(dir).find("no trajectory to render"), std::string::npos);
+    EXPECT_NE(error_of(dir, SourceKind::gsd).find("trajectory.gsd: not found (--source gsd)"),
+              std::string::npos);
+    EXPECT_NE(error_of(dir, SourceKind::json).find("no frame_NNNNNN.json"), std::string::npos);
+    {
+        GsdWriter<2> empty(dir / "trajectory.gsd");
+        empty.commit();
+    }
+    EXPECT_NE(error_of(dir).find("trajectory.gsd (GSD): the trajectory has no frames"),
+              std::string::npos)
+        << error_of(dir);
+}
+
+TEST_F(RenderSources, ABrokenConfigOnlyLosesItsFacts) {
+    write("config.toml", "dimension = 2\n[run\ndt = ");
+    const RunFacts broken = read_run_facts(dir / "config.toml");
+    EXPECT_FALSE(broken.dt);
+    EXPECT_FALSE(broken.periodic);
+    EXPECT_TRUE(broken.species_names.empty());
+
+    write("config.toml", "dimension = 3\n[box]\nboundary = \"wall\"\n[run]\ndt = 0.5\n");
+    const RunFacts facts = read_run_facts(dir / "config.toml");
+    ASSERT_TRUE(facts.dt);
+    EXPECT_EQ(*facts.dt, 0.5);
+    ASSERT_TRUE(facts.periodic);
+    EXPECT_EQ(*facts.periodic, (std::array<bool, 3>{false, false, false}));
+}
+
+} // namespace
