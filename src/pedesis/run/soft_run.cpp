@@ -8,6 +8,7 @@
 #include "pedesis/io/vtp_writer.hpp"
 #include "pedesis/io/xyz_writer.hpp"
 #include "pedesis/observe/soft_observables.hpp"
+#include "pedesis/run/run_directory.hpp"
 #include "pedesis/run/soft_checkpoint.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
@@ -86,8 +87,7 @@ template <int D> class SoftRun {
             while (state_.step < c_.steps) {
                 evolver_->evolve(c_.dt);
                 // a multiple of dt, not a running sum: t = 10 after 1000 steps of 0.01
-                state_.time =
-                    time_start_ + static_cast<double>(state_.step - step_start_) * c_.dt;
+                state_.time = time_start_ + static_cast<double>(state_.step - step_start_) * c_.dt;
                 const std::uint64_t k = state_.step;
                 if (k % c_.log_every == 0 || k == c_.steps) log_row();
                 if (c_.snapshot_every && k % c_.snapshot_every == 0 && k != c_.steps) frame();
@@ -140,17 +140,7 @@ template <int D> class SoftRun {
     }
 
     void prepare_directory() {
-        std::error_code ec;
-        std::filesystem::create_directories(o_.out_dir / "snapshots", ec);
-        if (ec)
-            throw InputError(o_.out_dir.string() +
-                             ": cannot create output directory: " + ec.message());
-        std::filesystem::remove(o_.out_dir / "summary.json", ec);
-        std::ifstream cfg(o_.config_path);
-        std::stringstream text;
-        text << cfg.rdbuf();
-        write_file_atomically(o_.out_dir / "config.toml",
-                              [&](std::ostream& out) { out << text.str(); });
+        prepare_run_directory(o_.out_dir, o_.config_path, {"summary.json"});
         log_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "log.csv");
         std::string header = "step,time,polar_order,msd,potential_energy,";
         if (inertial()) header += "kinetic_energy,";

@@ -1,0 +1,29 @@
+#pragma once
+// What every run driver does first with its output directory: create it (with
+// snapshots/), remove results of an earlier run there that must not pass for this
+// run's, and keep a copy of the config beside the results.
+#include "pedesis/core/error.hpp"
+#include "pedesis/io/atomic_file.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+namespace pedesis {
+
+inline void prepare_run_directory(const std::filesystem::path& out_dir,
+                                  const std::filesystem::path& config_path,
+                                  std::initializer_list<const char*> stale_results) {
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir / "snapshots", ec);
+    if (ec)
+        throw InputError(out_dir.string() + ": cannot create output directory: " + ec.message());
+    for (const char* stale : stale_results) std::filesystem::remove(out_dir / stale, ec);
+    std::ifstream cfg(config_path);
+    std::stringstream text;
+    text << cfg.rdbuf();
+    write_file_atomically(out_dir / "config.toml", [&](std::ostream& out) { out << text.str(); });
+}
+
+} // namespace pedesis
