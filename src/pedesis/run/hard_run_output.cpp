@@ -6,6 +6,7 @@
 #include "pedesis/io/xyz_writer.hpp"
 #include "pedesis/observe/pressure.hpp"
 #include "pedesis/observe/theory.hpp"
+#include "pedesis/run/run_directory.hpp"
 
 #include <fmt/format.h>
 
@@ -51,18 +52,7 @@ template <int D> void HardRunRecord<D>::load(std::istream& in) {
 }
 
 template <int D> void HardRunOutput<D>::open(const std::string& extra_columns) {
-    std::error_code ec;
-    std::filesystem::create_directories(o_.out_dir / "snapshots", ec);
-    if (ec)
-        throw InputError(o_.out_dir.string() + ": cannot create output directory: " + ec.message());
-    // results of an earlier run in this directory must not pass for this run's
-    for (const char* stale : {"summary.json", "speed_histogram.csv"})
-        std::filesystem::remove(o_.out_dir / stale, ec);
-    std::ifstream cfg(o_.config_path);
-    std::stringstream text;
-    text << cfg.rdbuf();
-    write_file_atomically(o_.out_dir / "config.toml",
-                          [&](std::ostream& out) { out << text.str(); });
+    prepare_run_directory(o_.out_dir, o_.config_path, {"summary.json", "speed_histogram.csv"});
     log_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "log.csv");
     std::string header = "time,collisions,collisions_per_particle,wall_collisions,kinetic_energy,"
                          "energy_fraction,temperature";
