@@ -307,10 +307,10 @@ progress = false
                                "f = gsd.hoomd.open('" +
                                    (dir / "out/trajectory.gsd").string() +
                                    "')[1]\n"
-                               "assert f.configuration.dimensions == 3\n"
-                               "assert list(f.configuration.box) == [12, 12, 12, 0, 0, 0]\n"
-                               "assert f.particles.N == 300\n"
-                               "print('ok')\n",
+                                   "assert f.configuration.dimensions == 3\n"
+                                   "assert list(f.configuration.box) == [12, 12, 12, 0, 0, 0]\n"
+                                   "assert f.particles.N == 300\n"
+                                   "print('ok')\n",
                                dir);
     EXPECT_EQ(py.exit_code, 0) << py.output;
 }

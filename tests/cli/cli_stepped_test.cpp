@@ -136,6 +136,11 @@ TEST_F(CliStepped, RestartContinuesBitForBit) {
     // frames 0..4 in the full run; the half run wrote 0..2, so the restart ends at 4 too
     EXPECT_EQ(read("full/snapshots/frame_000004.json"), read("cont/snapshots/frame_000004.json"));
     EXPECT_EQ(read("full/speed_histogram.csv"), read("cont/speed_histogram.csv"));
+    // a checkpoint that already meets the stop condition has nothing to run
+    const CliResult done = run_pedesis("run half.toml --restart half/checkpoint.bin --out d", dir);
+    EXPECT_EQ(done.exit_code, 2);
+    EXPECT_NE(done.output.find("already meets the stop condition (time)"), std::string::npos)
+        << done.output;
     // an event checkpoint is refused
     write("e.toml", gas("dynamics = \"event\""));
     ASSERT_EQ(run_pedesis("run e.toml --out ev", dir).exit_code, 0);

@@ -11,7 +11,7 @@
 // that would give 1.1 / sqrt(20000) = 0.8%. (For a fixed cost in particle-steps, fewer
 // particles in a smaller box at the same density hit the walls more often.) The test
 // measures its own standard error from 20 blocks and requires it below 0.5%, a quarter
-// of the tolerance; measured 0.25%. A wrong factor in the wall
+// of the tolerance; measured 0.11%. A wrong factor in the wall
 // momentum (the notebook counts 2 m |v| per hit and divides by t (Lx + Ly), half the
 // perimeter, which doubles the pressure) or a time step that loses wall hits fails it.
 #include "pedesis/observe/theory.hpp"

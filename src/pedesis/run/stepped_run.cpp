@@ -129,12 +129,12 @@ template <int D> class SteppedRun {
         if (c_.stop_collisions_per_particle)
             collision_limit_ = static_cast<std::uint64_t>(
                 std::ceil(*c_.stop_collisions_per_particle * static_cast<double>(n)));
-        if (const char* why = stop_reason())
+        // (a fresh run always makes at least one step)
+        if (const char* why = o_.restart ? stop_reason() : nullptr)
             throw InputError(fmt::format(
                 "{}: the checkpoint {} is at t = {:g} (step {}), which already meets the stop "
                 "condition ({}); raise it in [run] to continue",
-                c_.file, o_.restart ? o_.restart->string() : "-", engine_->time(), engine_->steps(),
-                why));
+                c_.file, o_.restart->string(), engine_->time(), engine_->steps(), why));
         out_.open(",step,v_rms,mean_speed,pressure_running");
 
         const auto& e = *engine_;
