@@ -423,19 +423,9 @@ constexpr std::uint32_t checkpoint_version = 1;
 
 template <int D> void EventEngine<D>::save(std::ostream& out) const {
     using binary::put;
-    put(out, checkpoint_magic);
-    put(out, checkpoint_version);
-    put<std::int32_t>(out, D);
-    put<std::uint64_t>(out, p_.species_table.size());
-    for (const auto& s : p_.species_table) {
-        put(out, s.name);
-        put(out, s.radius);
-        put(out, s.mass);
-    }
-    for (int a = 0; a < D; ++a) {
-        put(out, box_.length(a));
-        put<std::uint8_t>(out, box_.periodic(a));
-    }
+    binary::put_header(out, checkpoint_magic, checkpoint_version, D);
+    put(out, p_.species_table);
+    put(out, box_);
     put(out, now_);
     put(out, skin_);
     put(out, kinetic_);
@@ -461,41 +451,16 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
 
 template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const EventParams& params) {
     using binary::get;
-    std::uint64_t magic = 0;
-    std::uint32_t version = 0;
-    std::int32_t dim = 0;
-    get(in, magic);
-    if (magic != checkpoint_magic) throw InputError("checkpoint: not a pedesis event checkpoint");
-    get(in, version);
-    if (version != checkpoint_version)
-        throw InputError("checkpoint: unsupported version " + std::to_string(version));
-    get(in, dim);
-    if (dim != D)
-        throw InputError("checkpoint: written for dimension " + std::to_string(dim) +
-                         ", config asks for " + std::to_string(D));
+    binary::get_header(in, checkpoint_magic, checkpoint_version, D, "event");
     validate(params);
     EventEngine e;
     e.params_ = params;
-    std::uint64_t ns = 0;
-    get(in, ns);
-    if (ns > 65535) throw InputError("checkpoint: corrupt species count");
-    e.p_.species_table.resize(ns);
-    for (auto& s : e.p_.species_table) {
-        get(in, s.name);
-        get(in, s.radius);
-        get(in, s.mass);
+    get(in, e.p_.species_table);
+    for (const auto& s : e.p_.species_table) {
         e.radius_.push_back(s.radius);
         e.inv_mass_.push_back(s.inverse_mass());
     }
-    Vec<D> L;
-    std::array<bool, D> periodic{};
-    for (int a = 0; a < D; ++a) {
-        std::uint8_t pflag = 0;
-        get(in, L[a]);
-        get(in, pflag);
-        periodic[a] = pflag != 0;
-    }
-    e.box_ = Box<D>(L, periodic);
+    get(in, e.box_);
     get(in, e.now_);
     get(in, e.skin_);
     e.shell_ = 0.5 * e.skin_;
@@ -525,7 +490,7 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
         throw InputError("checkpoint: inconsistent array sizes (corrupt file)");
     if (params.tc > 0.0 && e.last_collision_.size() != n) e.last_collision_.assign(n, -never);
     for (auto s : e.p_.species)
-        if (s >= ns) throw InputError("checkpoint: corrupt species index");
+        if (s >= e.p_.species_table.size()) throw InputError("checkpoint: corrupt species index");
     for (std::size_t i = 0; i < n; ++i) {
         if (e.n_nbr_[i] > e.stride_) throw InputError("checkpoint: corrupt neighbour list");
         for (std::uint16_t k = 0; k < e.n_nbr_[i]; ++k)

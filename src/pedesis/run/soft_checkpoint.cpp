@@ -11,6 +11,7 @@ namespace pedesis {
 namespace {
 
 constexpr std::uint64_t soft_checkpoint_magic = 0x31544653444550ull; // "PEDSFT1"
+constexpr std::uint32_t soft_checkpoint_version = 2;
 
 // The state's arrays in checkpoint order; one list serves saving and loading.
 template <class State, class F> void for_each_array(State& s, F&& f) {
@@ -32,15 +33,9 @@ void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>&
     write_file_atomically(
         path,
         [&](std::ostream& out) {
-            binary::put(out, soft_checkpoint_magic);
-            binary::put(out, std::int32_t{D});
+            binary::put_header(out, soft_checkpoint_magic, soft_checkpoint_version, D);
             binary::put(out, s.box);
-            binary::put<std::uint64_t>(out, s.p.species_table.size());
-            for (const auto& sp : s.p.species_table) {
-                binary::put(out, sp.name);
-                binary::put(out, sp.radius);
-                binary::put(out, sp.mass);
-            }
+            binary::put(out, s.p.species_table);
             binary::put(out, s.step);
             binary::put(out, s.time);
             for_each_array(s, [&](const auto& v) { binary::put(out, v); });
@@ -61,23 +56,11 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path.string() + ": cannot open checkpoint");
     try {
-        std::uint64_t magic = 0;
-        binary::get(in, magic);
-        if (magic != soft_checkpoint_magic)
-            throw InputError("not a checkpoint of a soft-engine (brownian, langevin, nve) run");
-        std::int32_t dim = 0;
-        binary::get(in, dim);
-        if (dim != D) throw InputError("written by a " + std::to_string(dim) + "D run");
+        binary::get_header(in, soft_checkpoint_magic, soft_checkpoint_version, D,
+                           "soft-engine (brownian, langevin, nve)");
         binary::get(in, s.box);
-        std::uint64_t n_species = 0;
-        binary::get(in, n_species);
-        if (n_species > 65536) throw InputError("file is corrupt");
-        s.p.species_table.resize(n_species);
-        for (auto& sp : s.p.species_table) {
-            binary::get(in, sp.name);
-            binary::get(in, sp.radius);
-            binary::get(in, sp.mass);
-        }
+        binary::get(in, s.p.species_table);
+        const std::size_t n_species = s.p.species_table.size();
         binary::get(in, s.step);
         binary::get(in, s.time);
         for_each_array(s, [&](auto& v) { binary::get(in, v); });

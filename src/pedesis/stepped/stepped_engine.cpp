@@ -321,19 +321,9 @@ constexpr std::uint32_t checkpoint_version = 1;
 
 template <int D> void SteppedEngine<D>::save(std::ostream& out) const {
     using binary::put;
-    put(out, checkpoint_magic);
-    put(out, checkpoint_version);
-    put<std::int32_t>(out, D);
-    put<std::uint64_t>(out, p_.species_table.size());
-    for (const auto& s : p_.species_table) {
-        put(out, s.name);
-        put(out, s.radius);
-        put(out, s.mass);
-    }
-    for (int a = 0; a < D; ++a) {
-        put(out, box_.length(a));
-        put<std::uint8_t>(out, box_.periodic(a));
-    }
+    binary::put_header(out, checkpoint_magic, checkpoint_version, D);
+    put(out, p_.species_table);
+    put(out, box_);
     put(out, dt_);
     put(out, step_);
     put(out, step_base_);
@@ -349,41 +339,13 @@ template <int D> void SteppedEngine<D>::save(std::ostream& out) const {
 template <int D>
 SteppedEngine<D> SteppedEngine<D>::load(std::istream& in, const SteppedParams& params) {
     using binary::get;
-    std::uint64_t magic = 0;
-    std::uint32_t version = 0;
-    std::int32_t dim = 0;
-    get(in, magic);
-    if (magic != checkpoint_magic) throw InputError("checkpoint: not a pedesis stepped checkpoint");
-    get(in, version);
-    if (version != checkpoint_version)
-        throw InputError("checkpoint: unsupported version " + std::to_string(version));
-    get(in, dim);
-    if (dim != D)
-        throw InputError("checkpoint: written for dimension " + std::to_string(dim) +
-                         ", config asks for " + std::to_string(D));
+    binary::get_header(in, checkpoint_magic, checkpoint_version, D, "stepped");
     validate(params);
     SteppedEngine e;
     e.params_ = params;
-    std::uint64_t ns = 0;
-    get(in, ns);
-    if (ns == 0 || ns > 65535) throw InputError("checkpoint: corrupt species count");
-    e.p_.species_table.resize(ns);
-    for (auto& s : e.p_.species_table) {
-        get(in, s.name);
-        get(in, s.radius);
-        get(in, s.mass);
-        if (!(s.radius > 0.0) || !(s.mass > 0.0))
-            throw InputError("checkpoint: corrupt species '" + s.name + "'");
-    }
-    Vec<D> L;
-    std::array<bool, D> periodic{};
-    for (int a = 0; a < D; ++a) {
-        std::uint8_t flag = 0;
-        get(in, L[a]);
-        get(in, flag);
-        periodic[a] = flag != 0;
-    }
-    e.box_ = Box<D>(L, periodic);
+    get(in, e.p_.species_table);
+    const std::size_t ns = e.p_.species_table.size();
+    get(in, e.box_);
     double saved_dt = 0.0;
     get(in, saved_dt);
     get(in, e.step_);
