@@ -4,7 +4,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPEDESIS_WERROR=ON
 
-.PHONY: all deps build demo test validation bench format clean
+.PHONY: all deps build demo test validation bench format clean python
 
 all: build
 
@@ -16,6 +16,12 @@ $(BUILD)/CMakeCache.txt: | deps
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
+	@echo "python: import pedesis with PYTHONPATH=$(abspath $(BUILD))/python /usr/bin/python3 (or run: make python)"
+
+# Puts a path file (pedesis.pth) into Debian's python3's user site-packages, so that
+# `python3 -c "import pedesis"` finds this build from any directory.
+python: build
+	@/usr/bin/python3 scripts/install_python_path.py $(abspath $(BUILD))/python
 
 demo: build
 	./$(BUILD)/pedesis run examples/course_1_relaxation.toml --out runs/demo
@@ -32,7 +38,7 @@ validation: build
 	cd $(BUILD) && OMP_WAIT_POLICY=passive ctest --output-on-failure -j $(JOBS) -L validation
 
 format:
-	find src apps tests bench -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
+	find src apps tests bench python/src -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i
 
 clean:
 	rm -rf $(BUILD)

@@ -9,6 +9,7 @@ packages=(
   nlohmann-json3-dev libtomlplusplus-dev libcli11-dev libfmt-dev librandom123-dev
   libomp-dev python3-numpy python3-gsd
   libcairo2-dev ffmpeg python3-matplotlib
+  python3-dev pybind11-dev python3-pytest
 )
 
 missing=()

@@ -14,11 +14,15 @@ toml::table parse_toml_file(const std::string& path) {
     if (!in) throw InputError(path + ": cannot open config file");
     std::stringstream buf;
     buf << in.rdbuf();
+    return parse_toml_text(buf.str(), path);
+}
+
+toml::table parse_toml_text(const std::string& text, const std::string& name) {
     try {
-        return toml::parse(buf.str(), path);
+        return toml::parse(text, name);
     } catch (const toml::parse_error& e) {
         std::ostringstream m;
-        m << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": "
+        m << name << ":" << e.source().begin.line << ":" << e.source().begin.column << ": "
           << e.description();
         throw InputError(m.str());
     }

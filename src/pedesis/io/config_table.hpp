@@ -56,5 +56,6 @@ class ConfigTable {
 
 // Parses a TOML file; malformed files give "file:line:column: message".
 toml::table parse_toml_file(const std::string& path);
+toml::table parse_toml_text(const std::string& text, const std::string& name);
 
 } // namespace pedesis

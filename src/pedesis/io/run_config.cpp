@@ -156,6 +156,8 @@ void read_stepped_section(ConfigTable& root, RunConfig& c) {
 
 // [event] (or [stepped]), [run] and [output] of the hard-particle engines (times in
 // simulation units).
+void read_event_output(const toml::table& doc, ConfigTable& root, RunConfig& c);
+
 void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c) {
     const bool stepped = c.dynamics == "stepped";
     if (stepped)
@@ -183,6 +185,7 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
     const std::string stops = stepped ? "time, steps, collisions_per_particle"
                                       : "time, collisions_per_particle, energy_fraction";
     auto run = root.table("run");
+    if (!run && c.scripted) return read_event_output(doc, root, c);
     if (!run)
         throw InputError(c.file + ": missing [run] table (give at least one of " + stops + ")");
     c.stop_time = run->number("time");
@@ -202,7 +205,8 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
         throw InputError(run->where("collisions_per_particle") + ": must be positive");
     if (c.stop_energy_fraction && !(*c.stop_energy_fraction > 0 && *c.stop_energy_fraction < 1))
         throw InputError(run->where("energy_fraction") + ": must lie in (0, 1)");
-    if (!c.stop_time && !c.stop_collisions_per_particle && !c.stop_energy_fraction && !c.stop_steps)
+    if (!c.scripted && !c.stop_time && !c.stop_collisions_per_particle && !c.stop_energy_fraction &&
+        !c.stop_steps)
         throw InputError(c.file + ": [run] needs at least one of " + stops);
     run->finish();
 
@@ -212,7 +216,10 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
             run->where("energy_fraction") +
             ": can never be reached with elastic collisions (event.restitution = 1 and "
             "event.wall_restitution = 1); add run.time or run.collisions_per_particle");
+    read_event_output(doc, root, c);
+}
 
+void read_event_output(const toml::table& doc, ConfigTable& root, RunConfig& c) {
     if (auto out = root.table("output")) {
         c.log_interval = out->number("log_interval", c.log_interval);
         if (!(c.log_interval > 0))
@@ -303,10 +310,12 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
 
 } // namespace
 
-RunConfig load_run_config(const std::string& path) {
-    const toml::table doc = parse_toml_file(path);
+namespace {
+
+RunConfig read_run_config(const toml::table& doc, const std::string& path, bool scripted) {
     ConfigTable root(doc, path);
     RunConfig c;
+    c.scripted = scripted;
     c.file = path;
     const auto dim = root.integer("dimension").value_or(2);
     if (dim != 2 && dim != 3) throw InputError(root.where("dimension") + ": must be 2 or 3");
@@ -348,6 +357,16 @@ RunConfig load_run_config(const std::string& path) {
         read_event_sections(doc, root, c);
     root.finish();
     return c;
+}
+
+} // namespace
+
+RunConfig load_run_config(const std::string& path, bool scripted) {
+    return read_run_config(parse_toml_file(path), path, scripted);
+}
+
+RunConfig parse_run_config(const std::string& text, const std::string& name, bool scripted) {
+    return read_run_config(parse_toml_text(text, name), name, scripted);
 }
 
 } // namespace pedesis

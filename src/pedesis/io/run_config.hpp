@@ -31,6 +31,9 @@ struct RunConfig {
     std::string dynamics = "event"; // event | stepped | brownian | langevin | nve
     // the soft/active engines; event and stepped are the hard-particle engines
     bool soft() const { return dynamics != "event" && dynamics != "stepped"; }
+    // A script (the Python module) gives the stop conditions: a hard-particle config
+    // needs no [run] then.
+    bool scripted = false;
     std::uint64_t seed = 1;
 
     std::vector<double> box_lengths; // soft engines: may be empty (box from the initial file)
@@ -82,6 +85,9 @@ struct RunConfig {
     std::uint64_t checkpoint_every = 0; // 0: only at the end
 };
 
-RunConfig load_run_config(const std::string& path);
+RunConfig load_run_config(const std::string& path, bool scripted = false);
+// The same from TOML text (the Python module's configs); messages name `name` as the
+// file, and a relative [initial] file is taken from the working directory.
+RunConfig parse_run_config(const std::string& text, const std::string& name, bool scripted);
 
 } // namespace pedesis

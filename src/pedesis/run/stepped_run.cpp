@@ -81,21 +81,6 @@ double run_speed_samples(const ParticleStore<D>& p, const Box<D>& box, const Run
     return static_cast<double>(p.size()) * (1.0 + std::max(collisions, 0.0));
 }
 
-// dt is checked against the starting speeds before anything is written, as bad input:
-// a step that carries a particle further than max_move radii could let it pass through
-// another particle or a wall.
-template <int D>
-void check_time_step(const ParticleStore<D>& p, const RunConfig& c, double samples) {
-    const FastestParticle f = fastest_particle(p, c.dt);
-    if (f.radii_per_step <= c.max_move) return;
-    throw InputError(fmt::format(
-        "{}: {:g} is too large: particle {} (species '{}') starts at speed {:.4g} and would move "
-        "{:.3g} radii in one step, more than stepped.max_move = {:g}, so particles could pass "
-        "through each other or a wall; use dt = {:.2g} or less",
-        c.dt_where, c.dt, p.tag[f.index], p.species_table[p.species[f.index]].name, f.speed,
-        f.radii_per_step, c.max_move, suggested_time_step(p, c.max_move, samples)));
-}
-
 // Only then is the running pressure the notebook's wall pressure on every axis.
 template <int D> bool all_walls(const Box<D>& box) {
     for (int a = 0; a < D; ++a)
@@ -115,11 +100,11 @@ template <int D> class SteppedRun {
             const auto& e = *engine_;
             samples_ = run_speed_samples(e.particles(), e.box(), c_, e.time(), e.steps(),
                                          e.counters().pair_collisions);
-            check_time_step(e.particles(), c_, samples_);
+            check_time_step(e.particles(), c_.dt, c_.max_move, c_.dt_where, samples_);
         } else {
             ParticleStore<D> p = build_particles<D>(c_, box);
             samples_ = run_speed_samples(p, box, c_, 0.0, 0, 0);
-            check_time_step(p, c_, samples_);
+            check_time_step(p, c_.dt, c_.max_move, c_.dt_where, samples_);
             engine_ = std::make_unique<SteppedEngine<D>>(std::move(p), box, stepped_params(c_));
             state_.initial_kinetic = engine_->kinetic_energy();
             state_.last_temperature = measure_kinetics(engine_->particles()).temperature(D);

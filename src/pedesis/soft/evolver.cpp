@@ -82,6 +82,33 @@ template <int D> void Evolver<D>::sort_particles() {
     ++builds_;
 }
 
+template <int D> bool Evolver<D>::in_tag_order() const {
+    for (std::size_t i = 0; i < s_.size(); ++i)
+        if (s_.p.tag[i] != i) return false;
+    return true;
+}
+
+template <int D> std::vector<std::uint32_t> Evolver<D>::restore_tag_order() {
+    if (in_tag_order()) return {};
+    std::vector<std::uint32_t> order(s_.size());
+    for (std::size_t i = 0; i < s_.size(); ++i) {
+        if (s_.p.tag[i] >= s_.size()) throw RunError("restore_tag_order: tags are not 0..N-1");
+        order[s_.p.tag[i]] = static_cast<std::uint32_t>(i);
+    }
+    reorder(order);
+    return order;
+}
+
+template <int D> void Evolver<D>::reorder(const std::vector<std::uint32_t>& order) {
+    s_.apply_order(order);
+    if (nl_ && nl_->size() == s_.size()) nl_->reorder(order);
+}
+
+template <int D> bool Evolver<D>::needs_initial_forces() const {
+    return std::any_of(integrators_.begin(), integrators_.end(),
+                       [](const auto& i) { return i->needs_initial_forces(); });
+}
+
 template <int D> void Evolver<D>::compute_forces() {
     ensure_list();
     // in parallel like every per-particle loop of a step: serial, it would cap the speed-up
@@ -101,9 +128,7 @@ template <int D> void Evolver<D>::evolve(double dt) {
     if (!(dt > 0.0 && std::isfinite(dt))) throw InputError("dt must be a positive finite number");
     if (!nl_) ensure_list();
     if (sort_interval_ > 0 && s_.step > 0 && s_.step % sort_interval_ == 0) sort_particles();
-    if (!forces_current_ && std::any_of(integrators_.begin(), integrators_.end(),
-                                        [](const auto& i) { return i->needs_initial_forces(); }))
-        compute_forces();
+    if (!forces_current_ && needs_initial_forces()) compute_forces();
     // A step longer than the skin is a blow-up (tunnelling through neighbours), as in
     // the tutorial's guidance on choosing the pad; with no skin, the cutoff is the scale.
     const double max_move = skin_ > 0.0 ? skin_ : r_list_cut_;

@@ -30,12 +30,26 @@ template <int D> class Evolver {
     void set_sort_interval(std::uint64_t steps) { sort_interval_ = steps; }
     std::uint64_t sort_interval() const { return sort_interval_; }
 
+    // Puts the storage back in tag order (index i holds tag i), as the Python module's
+    // array views need, without changing the trajectory: the neighbour list follows the
+    // particles instead of being rebuilt. The next sort (every sort_interval steps) gives
+    // the same order as if this had never happened.
+    // Returns the order applied (empty if the storage was in tag order already);
+    // reorder(inverse) goes back to the storage order before the call.
+    std::vector<std::uint32_t> restore_tag_order();
+    void reorder(const std::vector<std::uint32_t>& order);
+    bool in_tag_order() const;
+
     // Forces and torques at the current positions, as if a step were starting (the
     // velocity-Verlet pre-step needs them; evolve() calls this once by itself).
     void compute_forces();
     // The forces in the state are those of its positions (e.g. restored from a
     // checkpoint): the first step must not recompute them.
     void mark_forces_current() { forces_current_ = true; }
+    // The positions were changed from outside (the Python module's arrays): the next step
+    // recomputes the forces its pre-step needs.
+    void invalidate_forces() { forces_current_ = false; }
+    bool needs_initial_forces() const;
 
     // What a checkpoint needs to continue bit for bit: the positions of the last list
     // build (the list is rebuilt from them, giving the same rows) and the build count.
@@ -49,6 +63,7 @@ template <int D> class Evolver {
     double list_cutoff() const { return r_list_cut_; }
     double skin() const { return skin_; }
     const std::vector<std::unique_ptr<ForceTerm<D>>>& forces() const { return forces_; }
+    const std::vector<std::unique_ptr<TorqueTerm<D>>>& torques() const { return torques_; }
     const std::vector<std::unique_ptr<Integrator<D>>>& integrators() const { return integrators_; }
 
   private:

@@ -11,6 +11,7 @@
 #include "pedesis/soft/velocity_verlet.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace pedesis {
@@ -96,12 +97,62 @@ std::string known_names(PluginKind kind) {
 }
 
 void check_limit(double v, ParamLimit limit, const std::string& where) {
+    if (!std::isfinite(v)) throw InputError(where + ": must be a finite number");
     if (limit == ParamLimit::positive && !(v > 0.0)) throw InputError(where + ": must be positive");
     if (limit == ParamLimit::non_negative && !(v >= 0.0))
         throw InputError(where + ": must be >= 0");
 }
 
+const PluginInfo& plugin_info(PluginKind kind, const std::string& name, const std::string& where) {
+    const PluginInfo* info = find_plugin(kind, name);
+    if (!info)
+        throw InputError(where + ": unknown " + kind_name(kind) + " '" + name +
+                         "' (known: " + known_names(kind) + ")");
+    return *info;
+}
+
+void require_param(const PluginSpec& spec, const ParamInfo& p) {
+    if (p.required)
+        throw InputError(spec.where + ": " + kind_name(spec.kind) + " '" + spec.name + "' needs " +
+                         p.key + " (" + p.meaning + ")");
+}
+
 } // namespace
+
+PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
+                            std::map<std::string, PluginParam> given, const std::string& where) {
+    PluginSpec spec;
+    spec.kind = kind;
+    spec.name = name;
+    spec.where = where;
+    const PluginInfo& info = plugin_info(kind, name, where);
+    for (const ParamInfo& p : info.params) {
+        const auto it = given.find(p.key);
+        if (it == given.end()) {
+            require_param(spec, p);
+            continue;
+        }
+        PluginParam& value = it->second;
+        if (!value.by_species.empty() && !p.per_species)
+            throw InputError(value.where + ": is one number for all species");
+        if (!value.uniform && value.by_species.empty())
+            throw InputError(value.where + ": names no species");
+        if (value.uniform) check_limit(*value.uniform, p.limit, value.where);
+        for (const auto& [species, v] : value.by_species)
+            check_limit(v, p.limit, value.where + " (species '" + species + "')");
+        spec.params[p.key] = value;
+        given.erase(it);
+    }
+    if (!given.empty()) {
+        std::string keys;
+        for (const ParamInfo& p : info.params)
+            keys += std::string(keys.empty() ? "" : ", ") + p.key;
+        throw InputError(given.begin()->second.where + ": " + kind_name(kind) + " '" + name +
+                         "' has no parameter '" + given.begin()->first +
+                         "' (it has: " + (keys.empty() ? std::string("none") : keys) + ")");
+    }
+    return spec;
+}
 
 PluginSpec read_plugin(ConfigTable& t, PluginKind kind) {
     PluginSpec spec;
@@ -110,17 +161,12 @@ PluginSpec read_plugin(ConfigTable& t, PluginKind kind) {
     if (!name)
         throw InputError(t.where("name") + ": a [[" + std::string(kind_name(kind)) +
                          "]] needs a name (one of: " + known_names(kind) + ")");
-    const PluginInfo* info = find_plugin(kind, *name);
-    if (!info)
-        throw InputError(t.where("name") + ": unknown " + kind_name(kind) + " '" + *name +
-                         "' (known: " + known_names(kind) + ")");
     spec.name = *name;
     spec.where = t.where("name");
-    for (const ParamInfo& p : info->params) {
+    const PluginInfo& info = plugin_info(kind, *name, spec.where);
+    for (const ParamInfo& p : info.params) {
         if (!t.has(p.key)) {
-            if (p.required)
-                throw InputError(t.where("name") + ": " + kind_name(kind) + " '" + spec.name +
-                                 "' needs " + p.key + " (" + p.meaning + ")");
+            require_param(spec, p);
             continue;
         }
         PluginParam value;

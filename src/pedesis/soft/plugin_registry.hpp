@@ -8,6 +8,7 @@
 #include "pedesis/soft/plugin_spec.hpp"
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,12 @@ const char* kind_name(PluginKind kind); // "force", "torque", "integrator"
 // known ones, unknown keys, missing required keys and values outside their limits are
 // InputErrors naming file, line and key.
 PluginSpec read_plugin(ConfigTable& table, PluginKind kind);
+
+// The same checks for parameters given by a program (the Python module): `given` maps
+// parameter names to values, each with its own `where` for messages; unknown names are
+// InputErrors listing the known ones.
+PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
+                            std::map<std::string, PluginParam> given, const std::string& where);
 
 // The value of parameter `key` for every species of the table, in table order.
 PerSpecies plugin_parameter(const PluginSpec& spec, const std::string& key,

@@ -211,6 +211,26 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     ++builds_;
 }
 
+template <int D> void NeighborList<D>::reorder(const std::vector<std::uint32_t>& order) {
+    if (order.size() != n_)
+        throw RunError(
+            fmt::format("neighbour list: reorder of {} particles, list has {}", order.size(), n_));
+    std::vector<std::uint32_t> new_index(n_);
+    for (std::size_t i = 0; i < n_; ++i) new_index[order[i]] = static_cast<std::uint32_t>(i);
+    std::vector<std::size_t> offsets(n_ + 1, 0);
+    for (std::size_t i = 0; i < n_; ++i) offsets[i + 1] = offsets[i] + count(order[i]);
+    auto rows = std::make_unique_for_overwrite<std::uint32_t[]>(capacity_);
+    for (std::size_t i = 0; i < n_; ++i) {
+        std::uint32_t* w = rows.get() + offsets[i];
+        for (const std::uint32_t* j = begin(order[i]); j != end(order[i]); ++j)
+            *w++ = new_index[*j];
+    }
+    neighbors_ = std::move(rows);
+    offsets_ = std::move(offsets);
+    // ref_ stays in cell order; only the particle each entry belongs to is renamed
+    for (auto& k : by_cell_) k = new_index[k];
+}
+
 template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& pos) const {
     if (builds_ == 0 || n_ != pos.size()) return true;
     const double lim2 = 0.25 * skin_ * skin_;

@@ -47,6 +47,12 @@ template <int D> class NeighborList {
     // particle count changed, or before the first build.
     bool needs_rebuild(const std::vector<Vec<D>>& pos) const;
 
+    // Follows a reordering of the particles' storage (new index i holds the particle that
+    // was at old index order[i]) without a rebuild: every particle keeps the same
+    // neighbours in the same row order, so forces summed over the rows do not change by a
+    // bit. (A rebuild after the reordering would scan the cells in another order.)
+    void reorder(const std::vector<std::uint32_t>& order);
+
     // Particles in the last build; rows below are valid for i < size().
     std::size_t size() const { return n_; }
     std::uint32_t count(std::size_t i) const {

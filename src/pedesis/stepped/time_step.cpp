@@ -1,7 +1,10 @@
 #include "pedesis/stepped/time_step.hpp"
 
+#include "pedesis/core/error.hpp"
 #include "pedesis/observe/theory.hpp"
 #include "pedesis/observe/thermo.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -66,11 +69,26 @@ double suggested_time_step(const ParticleStore<D>& p, double max_move, double sa
     return round_down_two_digits(max_move * best);
 }
 
+template <int D>
+void check_time_step(const ParticleStore<D>& p, double dt, double max_move,
+                     const std::string& where, double samples) {
+    const FastestParticle f = fastest_particle(p, dt);
+    if (f.radii_per_step <= max_move) return;
+    throw InputError(fmt::format(
+        "{}: {:g} is too large: particle {} (species '{}') starts at speed {:.4g} and would move "
+        "{:.3g} radii in one step, more than stepped.max_move = {:g}, so particles could pass "
+        "through each other or a wall; use dt = {:.2g} or less",
+        where, dt, p.tag[f.index], p.species_table[p.species[f.index]].name, f.speed,
+        f.radii_per_step, max_move, suggested_time_step(p, max_move, samples)));
+}
+
 template FastestParticle fastest_particle(const ParticleStore<2>&, double);
 template FastestParticle fastest_particle(const ParticleStore<3>&, double);
 template double expected_collisions_per_particle(const ParticleStore<2>&, const Box<2>&, double);
 template double expected_collisions_per_particle(const ParticleStore<3>&, const Box<3>&, double);
 template double suggested_time_step(const ParticleStore<2>&, double, double);
 template double suggested_time_step(const ParticleStore<3>&, double, double);
+template void check_time_step(const ParticleStore<2>&, double, double, const std::string&, double);
+template void check_time_step(const ParticleStore<3>&, double, double, const std::string&, double);
 
 } // namespace pedesis

@@ -8,6 +8,7 @@
 #include "pedesis/core/particles.hpp"
 
 #include <cstddef>
+#include <string>
 
 namespace pedesis {
 
@@ -37,5 +38,12 @@ double expected_collisions_per_particle(const ParticleStore<D>& p, const Box<D>&
 // significant digits; +infinity when nothing moves.
 template <int D>
 double suggested_time_step(const ParticleStore<D>& p, double max_move, double samples);
+
+// dt against the starting speeds, as bad input: a step that carries a particle further
+// than max_move radii could let it pass through another particle or a wall. The
+// InputError names `where` (the config key), the particle and a dt to use instead.
+template <int D>
+void check_time_step(const ParticleStore<D>& p, double dt, double max_move,
+                     const std::string& where, double samples);
 
 } // namespace pedesis

@@ -1,0 +1,188 @@
+// pedesis.Gas: the event-driven and time-stepped hard-particle engines from Python.
+#include "bindings.hpp"
+#include "errors.hpp"
+#include "gas_model.hpp"
+
+#include "pedesis/core/error.hpp"
+
+#include <fmt/format.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+
+namespace py = pybind11;
+
+namespace pedesis::python {
+
+namespace {
+
+struct PyGas {
+    std::unique_ptr<GasModel> model;
+    std::string source;
+};
+
+py::array_t<double> rows(const std::vector<double>& v, std::size_t n, int dim) {
+    py::array_t<double> a({n, static_cast<std::size_t>(dim)});
+    std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+}
+
+template <class F> py::array_t<double> per_particle(const GasModel& g, F value) {
+    const auto types = g.types();
+    py::array_t<double> a(types.size());
+    auto* out = a.mutable_data();
+    for (std::size_t i = 0; i < types.size(); ++i) out[i] = value(g.species()[types[i]]);
+    return a;
+}
+
+std::unique_ptr<PyGas> make(const RunConfig& c, const std::string& source) {
+    auto g = std::make_unique<PyGas>();
+    g->model = make_gas(c);
+    g->source = source;
+    return g;
+}
+
+} // namespace
+
+void bind_gas(py::module_& m) {
+    py::class_<PyGas>(m, "Gas", R"doc(
+A gas of hard disks (2D) or spheres (3D) on the exact event-driven engine
+(dynamics = "event") or the time-stepped one (dynamics = "stepped").
+
+Gas(config) takes the text of a run config in TOML, Gas.from_file(path) a config file:
+the same [box], [[species]], [initial], [event] and [stepped] sections `pedesis run`
+reads (docs/config.md), with the same checks; [run] and [output] are not needed here
+(the stop conditions are run()'s arguments). Measured quantities are numpy arrays,
+copies in tag order.
+)doc")
+        .def(py::init([](const std::string& text) {
+                 return make(parse_run_config(text, "<Gas config>", true), "<Gas config>");
+             }),
+             py::arg("config"))
+        .def_static(
+            "from_file",
+            [](const std::filesystem::path& path) {
+                require_file(path, "Gas.from_file");
+                return make(load_run_config(path.string(), true), path.string());
+            },
+            py::arg("path"), "A gas from a run config file (TOML), as `pedesis run` reads it.")
+        .def(
+            "run",
+            [](PyGas& g, std::optional<double> time, std::optional<double> collisions_per_particle,
+               std::optional<std::uint64_t> steps) {
+                if (!time && !collisions_per_particle && !steps)
+                    throw InputError("Gas.run: give time, collisions_per_particle or steps");
+                if (time && !std::isfinite(*time))
+                    throw InputError(fmt::format("Gas.run: time must be finite, got {}", *time));
+                if (collisions_per_particle &&
+                    !(std::isfinite(*collisions_per_particle) && *collisions_per_particle >= 0.0))
+                    throw InputError(fmt::format(
+                        "Gas.run: collisions_per_particle must be a finite number >= 0, got {}",
+                        *collisions_per_particle));
+                GasLimits l{time, collisions_per_particle, steps};
+                py::gil_scoped_release release;
+                return g.model->run(l, check_signals);
+            },
+            py::arg("time") = py::none(), py::arg("collisions_per_particle") = py::none(),
+            py::arg("steps") = py::none(), R"doc(
+Advances until the simulated time reaches `time`, the pair collisions since t = 0
+reach collisions_per_particle * N, or (stepped engine) `steps` more steps were taken,
+whichever comes first; returns which ("time", "collisions_per_particle", "steps",
+"no_events"). The GIL is released; Ctrl-C stops at the next step (stepped) or within
+about N collisions (event), with the gas in a valid state.
+)doc")
+        .def_property_readonly(
+            "dynamics", [](const PyGas& g) { return g.model->dynamics(); },
+            "\"event\" or \"stepped\".")
+        .def_property_readonly("dim", [](const PyGas& g) { return g.model->dim(); })
+        .def_property_readonly("N", [](const PyGas& g) { return g.model->size(); })
+        .def("__len__", [](const PyGas& g) { return g.model->size(); })
+        .def_property_readonly(
+            "box", [](const PyGas& g) { return g.model->box(); },
+            "Box lengths; the box is centred at the origin.")
+        .def_property_readonly("time", [](const PyGas& g) { return g.model->time(); })
+        .def_property_readonly(
+            "steps", [](const PyGas& g) { return g.model->steps(); },
+            "Steps taken (stepped engine; 0 for event).")
+        .def_property_readonly(
+            "collisions", [](const PyGas& g) { return g.model->pair_collisions(); },
+            "Pair collisions since t = 0.")
+        .def_property_readonly("wall_collisions",
+                               [](const PyGas& g) { return g.model->wall_collisions(); })
+        .def_property_readonly(
+            "species",
+            [](const PyGas& g) {
+                py::list l;
+                for (const auto& sp : g.model->species())
+                    l.append(py::dict(py::arg("name") = sp.name, py::arg("radius") = sp.radius,
+                                      py::arg("mass") = sp.mass));
+                return l;
+            },
+            "The species table: [{'name', 'radius', 'mass'}, ...]; types index it.")
+        .def_property_readonly(
+            "positions",
+            [](const PyGas& g) {
+                return rows(g.model->positions(), g.model->size(), g.model->dim());
+            },
+            "(N, dim) positions at the current time (a copy).")
+        .def_property_readonly(
+            "velocities",
+            [](const PyGas& g) {
+                return rows(g.model->velocities(), g.model->size(), g.model->dim());
+            },
+            "(N, dim) velocities (a copy).")
+        .def_property_readonly(
+            "speeds",
+            [](const PyGas& g) {
+                const auto v = g.model->velocities();
+                const int d = g.model->dim();
+                py::array_t<double> a(g.model->size());
+                auto* out = a.mutable_data();
+                for (std::size_t i = 0; i < g.model->size(); ++i) {
+                    double s = 0.0;
+                    for (int k = 0; k < d; ++k) s += v[i * d + k] * v[i * d + k];
+                    out[i] = std::sqrt(s);
+                }
+                return a;
+            },
+            "(N,) speeds |v|.")
+        .def_property_readonly(
+            "types",
+            [](const PyGas& g) {
+                const auto t = g.model->types();
+                py::array_t<std::uint16_t> a(t.size());
+                std::copy(t.begin(), t.end(), a.mutable_data());
+                return a;
+            },
+            "(N,) species index of each particle.")
+        .def_property_readonly(
+            "masses",
+            [](const PyGas& g) {
+                return per_particle(*g.model, [](const Species& s) { return s.mass; });
+            },
+            "(N,) masses (inf for fixed obstacles).")
+        .def_property_readonly(
+            "radii",
+            [](const PyGas& g) {
+                return per_particle(*g.model, [](const Species& s) { return s.radius; });
+            },
+            "(N,) radii.")
+        .def(
+            "kinetic_energy", [](const PyGas& g) { return g.model->kinetic_energy(); },
+            "sum m v^2 / 2 over the mobile particles.")
+        .def(
+            "pressure", [](PyGas& g) { return g.model->pressure(); }, R"doc(
+Pressure since the previous call (or t = 0): on walled axes the momentum delivered to
+the walls per unit time and wall area (seed 003's definition), on periodic axes the
+collision virial N T / V + sum J n.r / (V dt); the mean over the axes. Temperature in
+N T / V is the mean of those at both ends of the interval.
+)doc")
+        .def("__repr__", [](const PyGas& g) {
+            return fmt::format("<pedesis.Gas: {} {}D, N={}, t={:g}, from {}>", g.model->dynamics(),
+                               g.model->dim(), g.model->size(), g.model->time(), g.source);
+        });
+}
+
+} // namespace pedesis::python

@@ -1,0 +1,55 @@
+#pragma once
+// The hard-particle engines (event and stepped) as the Python module drives them: a gas
+// built from a run config (a TOML file or text, with every check `pedesis run` makes),
+// advanced until a time, a collision count or a number of steps, and measured. Nothing
+// here knows Python.
+#include "pedesis/core/species.hpp"
+#include "pedesis/io/run_config.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pedesis::python {
+
+struct GasLimits {
+    std::optional<double> time;                    // absolute simulated time
+    std::optional<double> collisions_per_particle; // pair collisions since t = 0, per particle
+    std::optional<std::uint64_t> steps;            // steps from now (stepped engine only)
+};
+
+class GasModel {
+  public:
+    virtual ~GasModel() = default;
+    virtual int dim() const = 0;
+    virtual std::string dynamics() const = 0;
+    virtual std::size_t size() const = 0;
+    // Advances until the first limit is met; check_interrupt is called between chunks of
+    // work (at most ~N collisions or one step apart) and may throw to stop there.
+    // Returns the reason: "time", "collisions_per_particle", "steps", "no_events".
+    virtual std::string run(const GasLimits& limits,
+                            const std::function<void()>& check_interrupt) = 0;
+    // Copies in tag order (the event engine moves particles lazily: its own arrays hold
+    // each particle at its last event, so there is nothing to view).
+    virtual std::vector<double> positions() const = 0;  // N x dim at time()
+    virtual std::vector<double> velocities() const = 0; // N x dim
+    virtual std::vector<std::uint16_t> types() const = 0;
+    virtual std::vector<double> box() const = 0;
+    virtual const std::vector<Species>& species() const = 0;
+    virtual double time() const = 0;
+    virtual std::uint64_t steps() const = 0; // 0 for the event engine
+    virtual std::uint64_t pair_collisions() const = 0;
+    virtual std::uint64_t wall_collisions() const = 0;
+    virtual double kinetic_energy() const = 0;
+    // Pressure since the previous call (or since t = 0): momentum given to the walls per
+    // unit time and area on walled axes, the collision virial on periodic ones, with the
+    // mean of the temperatures at both ends as log.csv has it.
+    virtual double pressure() = 0;
+};
+
+std::unique_ptr<GasModel> make_gas(const RunConfig& config);
+
+} // namespace pedesis::python

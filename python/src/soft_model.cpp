@@ -1,0 +1,236 @@
+#include "soft_model.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/io/atomic_file.hpp"
+#include "pedesis/io/run_config.hpp"
+#include "pedesis/io/tutorial_json.hpp"
+#include "pedesis/io/vtp_writer.hpp"
+#include "pedesis/observe/soft_observables.hpp"
+#include "pedesis/setup/build_soft_state.hpp"
+#include "pedesis/soft/plugin_registry.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+namespace pedesis::python {
+
+namespace {
+
+// Vec<D> is D doubles with no padding (checked below), so a vector of them is an N x D
+// array of doubles that numpy can view.
+template <int K> double* raw(std::vector<Vec<K>>& v) {
+    static_assert(sizeof(Vec<K>) == K * sizeof(double));
+    return v.empty() ? nullptr : &v[0][0];
+}
+
+template <int D> class System final : public SystemModel {
+  public:
+    explicit System(SoftState<D> s) : state(std::move(s)) {}
+
+    int dim() const override { return D; }
+    std::size_t size() const override { return state.size(); }
+    double* positions() override { return raw(state.p.position); }
+    double* velocities() override { return raw(state.p.velocity); }
+    double* directors() override { return raw(state.director); }
+    double* forces() override { return raw(state.force); }
+    double* torques() override { return raw(state.torque); }
+    std::int32_t* images() override { return state.image.data()->data(); }
+    std::uint32_t* tags() override { return state.p.tag.data(); }
+    std::uint16_t* types() override { return state.p.species.data(); }
+    std::vector<double> box() const override {
+        std::vector<double> L;
+        for (int a = 0; a < D; ++a) L.push_back(state.box.length(a));
+        return L;
+    }
+    const std::vector<Species>& species() const override { return state.p.species_table; }
+    double time() const override { return state.time; }
+    std::uint64_t step() const override { return state.step; }
+    double polar_order() const override { return pedesis::polar_order(state); }
+    double kinetic_energy() const override { return pedesis::kinetic_energy(state); }
+    void write_vtp(const std::filesystem::path& path) const override {
+        pedesis::write_vtp(path, state);
+    }
+    void write_json(const std::filesystem::path& path) const override {
+        const std::string text = to_tutorial_json(state).dump() + "\n";
+        write_file_atomically(path, [&](std::ostream& out) { out << text; });
+    }
+
+    void check_arrays(const std::string& context) const override {
+        for (std::size_t i = 0; i < state.size(); ++i) {
+            for (int a = 0; a < D; ++a)
+                if (!std::isfinite(state.p.position[i][a]) ||
+                    !std::isfinite(state.director[i][a]) || !std::isfinite(state.p.velocity[i][a]))
+                    throw RunError(fmt::format(
+                        "{}: particle {} has a non-finite position, velocity or director", context,
+                        state.p.tag[i]));
+            const double n2 = norm2(state.director[i]);
+            if (!(n2 > 0.0))
+                throw RunError(
+                    fmt::format("{}: particle {} has a zero director", context, state.p.tag[i]));
+        }
+    }
+
+    SoftState<D> state;
+};
+
+int dimension_of_file(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+    if (doc.is_discarded() || !doc.is_object()) return 2; // the reader reports the fault
+    const auto sys = doc.find("system");
+    if (sys == doc.end() || !sys->is_object()) return 2;
+    const auto box = sys->find("box");
+    if (box != sys->end() && box->is_object() && box->contains("Lz")) return 3;
+    const auto parts = sys->find("particles");
+    if (parts != sys->end() && parts->is_array() && !parts->empty()) {
+        const auto& r = (*parts)[0];
+        if (r.is_object() && r.contains("r") && r["r"].is_array() && r["r"].size() == 3) return 3;
+    }
+    return 2;
+}
+
+template <int D>
+std::unique_ptr<SystemModel> read_system_d(const std::filesystem::path& path, std::uint64_t seed) {
+    // the same path as `pedesis run` with [initial] file and no [[species]]: one species
+    // per type, named A, B, ..., so that a config and a script give the same state
+    RunConfig c;
+    c.file = "System.read_init";
+    c.dimension = D;
+    c.dynamics = "brownian";
+    c.seed = seed;
+    c.initial_file = path.string();
+    c.species_defaults.positions = "file";
+    c.species_defaults.velocities = "zero";
+    return std::make_unique<System<D>>(build_soft_state<D>(c));
+}
+
+template <int D> class EvolverD final : public EvolverModel {
+  public:
+    EvolverD(System<D>& sys, double rcut, double pad, std::uint64_t seed, std::uint64_t sort_every)
+        : sys_(sys), evolver_(sys.state, pad, rcut), seed_(seed) {
+        evolver_.set_sort_interval(sort_every);
+    }
+
+    void add(const PluginSpec& spec) override {
+        add_plugin(evolver_, spec, sys_.state.p.species_table, seed_);
+    }
+
+    void run(std::uint64_t steps, double dt, const RunHooks& hooks) override {
+        if (!(dt > 0.0 && std::isfinite(dt)))
+            throw InputError(fmt::format("dt must be a positive finite number, got {}", dt));
+        auto& s = sys_.state;
+        take_outside_changes("before the run");
+        if (dt != dt_) { // a new time origin: t = t0 + (step - step0) dt, as the CLI counts
+            t0_ = s.time;
+            step0_ = s.step;
+            dt_ = dt;
+        }
+        // back to the storage order the last call ended in: a list rebuilt from another
+        // order would scan the cells in another order, and the forces would differ from
+        // the CLI's in the last bits
+        if (!sorted_order_.empty()) evolver_.reorder(sorted_order_);
+        sorted_order_.clear();
+        try {
+            for (std::uint64_t k = 0; k < steps; ++k) {
+                if (hooks.check_interrupt) hooks.check_interrupt();
+                evolver_.evolve(dt);
+                s.time = t0_ + static_cast<double>(s.step - step0_) * dt_;
+                if (hooks.every && hooks.between && s.step % hooks.every == 0) {
+                    const auto order = evolver_.restore_tag_order();
+                    remember_positions();
+                    hooks.between(s.step);
+                    take_outside_changes("after the callback");
+                    if (!order.empty()) evolver_.reorder(inverse(order));
+                }
+            }
+        } catch (...) {
+            back_to_tag_order();
+            throw;
+        }
+        back_to_tag_order();
+    }
+
+    std::uint64_t list_builds() const override { return evolver_.list_builds(); }
+    double list_cutoff() const override { return evolver_.list_cutoff(); }
+    double potential_energy() override {
+        take_outside_changes("potential_energy");
+        const double u = evolver_.pair_totals().energy;
+        evolver_.restore_tag_order();
+        return u;
+    }
+    std::vector<std::string> terms() const override {
+        std::vector<std::string> t;
+        for (const auto& f : evolver_.forces()) t.push_back(f->name());
+        for (const auto& f : evolver_.torques()) t.push_back(f->name());
+        for (const auto& i : evolver_.integrators()) t.push_back(i->name());
+        return t;
+    }
+
+  private:
+    static std::vector<std::uint32_t> inverse(const std::vector<std::uint32_t>& order) {
+        std::vector<std::uint32_t> inv(order.size());
+        for (std::size_t i = 0; i < order.size(); ++i)
+            inv[order[i]] = static_cast<std::uint32_t>(i);
+        return inv;
+    }
+
+    void back_to_tag_order() {
+        const auto order = evolver_.restore_tag_order();
+        if (!order.empty()) sorted_order_ = inverse(order);
+        remember_positions();
+    }
+
+    void remember_positions() {
+        if (evolver_.needs_initial_forces()) seen_ = sys_.state.p.position;
+    }
+
+    // What Python may have written into the arrays since it last had them: positions
+    // outside the box are wrapped (the image counters follow), and a velocity-Verlet
+    // pre-step gets the forces of the new positions. Unchanged arrays change nothing, so
+    // a script that only reads them follows the CLI's trajectory bit for bit.
+    void take_outside_changes(const char* when) {
+        auto& s = sys_.state;
+        sys_.check_arrays(when);
+        for (std::size_t i = 0; i < s.size(); ++i) {
+            const Vec<D> shift = s.box.wrap(s.p.position[i]);
+            for (int a = 0; a < D; ++a) s.image[i][a] += static_cast<std::int32_t>(shift[a]);
+        }
+        if (evolver_.needs_initial_forces() &&
+            (seen_.size() != s.size() ||
+             std::memcmp(seen_.data(), s.p.position.data(), s.size() * sizeof(Vec<D>)) != 0))
+            evolver_.invalidate_forces();
+    }
+
+    System<D>& sys_;
+    Evolver<D> evolver_;
+    std::uint64_t seed_;
+    double t0_ = 0.0, dt_ = 0.0;
+    std::uint64_t step0_ = 0;
+    std::vector<Vec<D>> seen_;
+    std::vector<std::uint32_t> sorted_order_; // re-applied at the next call
+};
+
+} // namespace
+
+std::unique_ptr<SystemModel> read_system(const std::filesystem::path& path, int dim,
+                                         std::uint64_t seed) {
+    if (dim == 0) dim = dimension_of_file(path);
+    if (dim == 2) return read_system_d<2>(path, seed);
+    if (dim == 3) return read_system_d<3>(path, seed);
+    throw InputError(fmt::format("System: dim must be 2 or 3, got {}", dim));
+}
+
+std::unique_ptr<EvolverModel> make_evolver(SystemModel& system, double rcut, double pad,
+                                           std::uint64_t seed, std::uint64_t sort_every) {
+    if (system.dim() == 2)
+        return std::make_unique<EvolverD<2>>(static_cast<System<2>&>(system), rcut, pad, seed,
+                                             sort_every);
+    return std::make_unique<EvolverD<3>>(static_cast<System<3>&>(system), rcut, pad, seed,
+                                         sort_every);
+}
+
+} // namespace pedesis::python
