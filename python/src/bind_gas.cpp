@@ -96,21 +96,25 @@ about N collisions (event), with the gas in a valid state.
         .def_property_readonly(
             "dynamics", [](const PyGas& g) { return g.model->dynamics(); },
             "\"event\" or \"stepped\".")
-        .def_property_readonly("dim", [](const PyGas& g) { return g.model->dim(); })
-        .def_property_readonly("N", [](const PyGas& g) { return g.model->size(); })
+        .def_property_readonly(
+            "dim", [](const PyGas& g) { return g.model->dim(); }, "Dimension, 2 or 3.")
+        .def_property_readonly(
+            "N", [](const PyGas& g) { return g.model->size(); }, "Number of particles.")
         .def("__len__", [](const PyGas& g) { return g.model->size(); })
         .def_property_readonly(
             "box", [](const PyGas& g) { return g.model->box(); },
             "Box lengths; the box is centred at the origin.")
-        .def_property_readonly("time", [](const PyGas& g) { return g.model->time(); })
+        .def_property_readonly(
+            "time", [](const PyGas& g) { return g.model->time(); }, "Simulated time.")
         .def_property_readonly(
             "steps", [](const PyGas& g) { return g.model->steps(); },
             "Steps taken (stepped engine; 0 for event).")
         .def_property_readonly(
             "collisions", [](const PyGas& g) { return g.model->pair_collisions(); },
             "Pair collisions since t = 0.")
-        .def_property_readonly("wall_collisions",
-                               [](const PyGas& g) { return g.model->wall_collisions(); })
+        .def_property_readonly(
+            "wall_collisions", [](const PyGas& g) { return g.model->wall_collisions(); },
+            "Particle-wall collisions since t = 0.")
         .def_property_readonly(
             "species",
             [](const PyGas& g) {

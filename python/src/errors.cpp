@@ -7,8 +7,12 @@ namespace py = pybind11;
 namespace pedesis::python {
 
 void register_errors(py::module_& m) {
-    py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
-    py::register_exception<RunError>(m, "RunError", PyExc_RuntimeError);
+    auto input = py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+    input.doc() = "Bad input: a parameter out of range, a malformed file or config (the "
+                  "message names the parameter, file, line or particle). A ValueError.";
+    auto run = py::register_exception<RunError>(m, "RunError", PyExc_RuntimeError);
+    run.doc() = "A run that cannot go on: a blow-up, a non-finite value, too many events in "
+                "a step (the message names the particle and step). A RuntimeError.";
 }
 
 namespace {
