@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/observe/pressure.hpp"
+#include "pedesis/run/engine_params.hpp"
 #include "pedesis/setup/build_system.hpp"
 #include "pedesis/stepped/stepped_engine.hpp"
 #include "pedesis/stepped/time_step.hpp"
@@ -62,11 +63,14 @@ template <int D, class Engine> class Gas : public GasModel {
     }
 
   protected:
-    void started(const std::vector<Species>& table) {
-        table_ = table;
-        const auto p = store();
+    // The particles and box of the config, handed to `make` for the engine.
+    template <class Make> void start(const RunConfig& c, Make make) {
+        const Box<D> box = build_box<D>(c);
+        ParticleStore<D> p = build_particles<D>(c, box);
+        table_ = p.species_table;
         mobile_ = 0;
         for (std::size_t i = 0; i < p.size(); ++i) mobile_ += std::isfinite(p.mass(i)) ? 1 : 0;
+        engine_ = make(std::move(p), box);
         last_time_ = engine_->time();
         last_T_ = temperature();
     }
@@ -85,24 +89,12 @@ template <int D, class Engine> class Gas : public GasModel {
     double last_time_ = 0.0, last_T_ = 0.0;
 };
 
-template <int D> EventParams event_params(const RunConfig& c) {
-    EventParams p;
-    p.restitution = c.restitution;
-    p.wall_restitution = c.wall_restitution;
-    p.tc = c.tc;
-    p.skin = c.skin;
-    p.check_overlaps = c.check_overlaps;
-    return p;
-}
-
 template <int D> class EventGas final : public Gas<D, EventEngine<D>> {
   public:
     explicit EventGas(const RunConfig& c) {
-        const Box<D> box = build_box<D>(c);
-        ParticleStore<D> p = build_particles<D>(c, box);
-        const auto table = p.species_table;
-        this->engine_ = std::make_unique<EventEngine<D>>(std::move(p), box, event_params<D>(c));
-        this->started(table);
+        this->start(c, [&](ParticleStore<D> p, const Box<D>& box) {
+            return std::make_unique<EventEngine<D>>(std::move(p), box, event_params(c));
+        });
     }
     std::string dynamics() const override { return "event"; }
     double time() const override { return this->engine_->time(); }
@@ -138,15 +130,10 @@ template <int D> class EventGas final : public Gas<D, EventEngine<D>> {
 template <int D> class SteppedGas final : public Gas<D, SteppedEngine<D>> {
   public:
     explicit SteppedGas(const RunConfig& c) {
-        const Box<D> box = build_box<D>(c);
-        ParticleStore<D> p = build_particles<D>(c, box);
-        const auto table = p.species_table;
-        check_time_step(p, c.dt, c.max_move, c.dt_where, static_cast<double>(p.size()));
-        SteppedParams sp;
-        sp.dt = c.dt;
-        sp.max_move = c.max_move;
-        this->engine_ = std::make_unique<SteppedEngine<D>>(std::move(p), box, sp);
-        this->started(table);
+        this->start(c, [&](ParticleStore<D> p, const Box<D>& box) {
+            check_time_step(p, c.dt, c.max_move, c.dt_where, static_cast<double>(p.size()));
+            return std::make_unique<SteppedEngine<D>>(std::move(p), box, stepped_params(c));
+        });
     }
     std::string dynamics() const override { return "stepped"; }
     double time() const override { return this->engine_->time(); }

@@ -1,5 +1,7 @@
 #include "pedesis/run/event_run.hpp"
 
+#include "pedesis/run/engine_params.hpp"
+
 #include "pedesis/core/error.hpp"
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/io/atomic_file.hpp"
@@ -24,16 +26,6 @@ namespace {
 
 constexpr std::uint64_t run_checkpoint_magic = 0x31304e5552444550ull; // "PEDRUN01"
 
-template <int D> EventParams event_params(const RunConfig& c) {
-    EventParams p;
-    p.restitution = c.restitution;
-    p.wall_restitution = c.wall_restitution;
-    p.tc = c.tc;
-    p.skin = c.skin;
-    p.check_overlaps = c.check_overlaps;
-    return p;
-}
-
 template <int D>
 void save_checkpoint(const std::filesystem::path& path, const EventEngine<D>& e,
                      const HardRunRecord<D>& s) {
@@ -56,7 +48,7 @@ std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& pat
         std::uint64_t magic = 0;
         binary::get(in, magic);
         if (magic != run_checkpoint_magic) throw InputError("not a pedesis run checkpoint");
-        auto e = std::make_unique<EventEngine<D>>(EventEngine<D>::load(in, event_params<D>(c)));
+        auto e = std::make_unique<EventEngine<D>>(EventEngine<D>::load(in, event_params(c)));
         s.load(in);
         check_checkpoint_matches(e->lazy_particles().species_table, e->box(), c);
         return e;
@@ -76,7 +68,7 @@ template <int D> class EventRun {
             engine_ = load_checkpoint<D>(*o_.restart, c_, state_);
         } else {
             engine_ = std::make_unique<EventEngine<D>>(build_particles<D>(c_, box), box,
-                                                       event_params<D>(c_));
+                                                       event_params(c_));
             state_.initial_kinetic = engine_->kinetic_energy();
             state_.last_temperature = measure_kinetics(engine_->lazy_particles()).temperature(D);
             state_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);

@@ -1,5 +1,7 @@
 #include "pedesis/run/stepped_run.hpp"
 
+#include "pedesis/run/engine_params.hpp"
+
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
@@ -23,13 +25,6 @@ namespace pedesis {
 namespace {
 
 constexpr std::uint64_t stepped_checkpoint_magic = 0x31305054535f4550ull; // "PE_STP01"
-
-SteppedParams stepped_params(const RunConfig& c) {
-    SteppedParams p;
-    p.dt = c.dt;
-    p.max_move = c.max_move;
-    return p;
-}
 
 template <int D>
 void save_checkpoint(const std::filesystem::path& path, const SteppedEngine<D>& e,

@@ -1,0 +1,27 @@
+#pragma once
+// The hard-particle engines' parameters as a run config gives them: one translation
+// for `pedesis run`, restarts and the Python module.
+#include "pedesis/event/event_engine.hpp"
+#include "pedesis/io/run_config.hpp"
+#include "pedesis/stepped/stepped_engine.hpp"
+
+namespace pedesis {
+
+inline EventParams event_params(const RunConfig& c) {
+    EventParams p;
+    p.restitution = c.restitution;
+    p.wall_restitution = c.wall_restitution;
+    p.tc = c.tc;
+    p.skin = c.skin;
+    p.check_overlaps = c.check_overlaps;
+    return p;
+}
+
+inline SteppedParams stepped_params(const RunConfig& c) {
+    SteppedParams p;
+    p.dt = c.dt;
+    p.max_move = c.max_move;
+    return p;
+}
+
+} // namespace pedesis
