@@ -7,6 +7,7 @@
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/observe/thermo.hpp"
+#include "pedesis/run/hard_checkpoint.hpp"
 #include "pedesis/run/hard_run_output.hpp"
 #include "pedesis/setup/build_system.hpp"
 
@@ -29,32 +30,17 @@ constexpr std::uint64_t run_checkpoint_magic = 0x31304e5552444550ull; // "PEDRUN
 template <int D>
 void save_checkpoint(const std::filesystem::path& path, const EventEngine<D>& e,
                      const HardRunRecord<D>& s) {
-    write_file_atomically(
-        path,
-        [&](std::ostream& out) {
-            binary::put(out, run_checkpoint_magic);
-            e.save(out);
-            s.save(out);
-        },
-        true);
+    save_hard_checkpoint(path, run_checkpoint_magic, e, s);
 }
 
 template <int D>
 std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& path,
                                                 const RunConfig& c, HardRunRecord<D>& s) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot open checkpoint");
-    try {
-        std::uint64_t magic = 0;
-        binary::get(in, magic);
-        if (magic != run_checkpoint_magic) throw InputError("not a pedesis run checkpoint");
-        auto e = std::make_unique<EventEngine<D>>(EventEngine<D>::load(in, event_params(c)));
-        s.load(in);
-        check_checkpoint_matches(e->lazy_particles().species_table, e->box(), c);
-        return e;
-    } catch (const InputError& err) {
-        throw InputError(path.string() + ": " + err.what());
-    }
+    return load_hard_checkpoint<EventEngine<D>>(
+        path, run_checkpoint_magic, "not a pedesis run checkpoint", event_params(c), c, s,
+        [](const EventEngine<D>& e) -> const std::vector<Species>& {
+            return e.lazy_particles().species_table;
+        });
 }
 
 template <int D> class EventRun {

@@ -7,6 +7,7 @@
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/observe/pressure.hpp"
 #include "pedesis/observe/thermo.hpp"
+#include "pedesis/run/hard_checkpoint.hpp"
 #include "pedesis/run/hard_run_output.hpp"
 #include "pedesis/setup/build_system.hpp"
 #include "pedesis/stepped/stepped_engine.hpp"
@@ -29,33 +30,17 @@ constexpr std::uint64_t stepped_checkpoint_magic = 0x31305054535f4550ull; // "PE
 template <int D>
 void save_checkpoint(const std::filesystem::path& path, const SteppedEngine<D>& e,
                      const HardRunRecord<D>& s) {
-    write_file_atomically(
-        path,
-        [&](std::ostream& out) {
-            binary::put(out, stepped_checkpoint_magic);
-            e.save(out);
-            s.save(out);
-        },
-        true);
+    save_hard_checkpoint(path, stepped_checkpoint_magic, e, s);
 }
 
 template <int D>
 std::unique_ptr<SteppedEngine<D>> load_checkpoint(const std::filesystem::path& path,
                                                   const RunConfig& c, HardRunRecord<D>& s) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot open checkpoint");
-    try {
-        std::uint64_t magic = 0;
-        binary::get(in, magic);
-        if (magic != stepped_checkpoint_magic)
-            throw InputError("not a checkpoint of a stepped run");
-        auto e = std::make_unique<SteppedEngine<D>>(SteppedEngine<D>::load(in, stepped_params(c)));
-        s.load(in);
-        check_checkpoint_matches(e->particles().species_table, e->box(), c);
-        return e;
-    } catch (const InputError& err) {
-        throw InputError(path.string() + ": " + err.what());
-    }
+    return load_hard_checkpoint<SteppedEngine<D>>(
+        path, stepped_checkpoint_magic, "not a checkpoint of a stepped run", stepped_params(c), c,
+        s, [](const SteppedEngine<D>& e) -> const std::vector<Species>& {
+            return e.particles().species_table;
+        });
 }
 
 // Independent speeds the rest of the run will draw, for the suggested dt: N at the
