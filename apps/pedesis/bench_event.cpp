@@ -59,7 +59,8 @@ template <int D> void run_bench(const BenchEventOptions& o) {
         all[i] = i;
     }
     remove_drift(p, all);
-    rescale_temperature(p, all, 1.0);
+    // periodic and momentum-free: d degrees of freedom go with the fixed momentum
+    rescale_temperature(p, all, 1.0, D);
 
     EventParams params;
     params.skin = o.skin;

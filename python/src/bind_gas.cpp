@@ -177,11 +177,25 @@ about N collisions (event), with the gas in a valid state.
             "kinetic_energy", [](const PyGas& g) { return g.model->kinetic_energy(); },
             "sum m v^2 / 2 over the mobile particles.")
         .def(
+            "temperature", [](const PyGas& g) { return g.model->temperature(); },
+            R"doc(
+Kinetic temperature 2 K / f, with K taken in the centre-of-mass frame along the
+momentum components the dynamics conserves and f the degrees of freedom (see
+degrees_of_freedom()); as log.csv's temperature column.
+)doc")
+        .def(
+            "degrees_of_freedom", [](const PyGas& g) { return g.model->degrees_of_freedom(); },
+            R"doc(
+Kinetic degrees of freedom f = d N_mobile - c, with c the momentum components the
+dynamics conserves: d in a fully periodic box without fixed obstacles, one per periodic
+axis with walls on the others, 0 with walls on every axis or a fixed obstacle.
+)doc")
+        .def(
             "pressure", [](PyGas& g) { return g.model->pressure(); }, R"doc(
 Pressure since the previous call (or t = 0): on walled axes the momentum delivered to
 the walls per unit time and wall area (seed 003's definition), on periodic axes the
-collision virial N T / V + sum J n.r / (V dt); the mean over the axes. Temperature in
-N T / V is the mean of those at both ends of the interval.
+collision virial (f / d) T / V + sum J n.r / (V dt), f the degrees of freedom; the mean
+over the axes. The temperature there is the mean of those at both ends of the interval.
 )doc")
         .def("__repr__", [](const PyGas& g) {
             return fmt::format("<pedesis.Gas: {} {}D, N={}, t={:g}, from {}>", g.model->dynamics(),

@@ -3,6 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/observe/pressure.hpp"
 #include "pedesis/run/engine_params.hpp"
+#include "pedesis/run/hard_run_output.hpp"
 #include "pedesis/setup/build_system.hpp"
 #include "pedesis/stepped/stepped_engine.hpp"
 #include "pedesis/stepped/time_step.hpp"
@@ -52,10 +53,14 @@ template <int D, class Engine> class Gas : public GasModel {
     std::uint64_t pair_collisions() const override { return engine_->counters().pair_collisions; }
     std::uint64_t wall_collisions() const override { return engine_->counters().wall_collisions; }
     double kinetic_energy() const override { return engine_->kinetic_energy(); }
+    double temperature() const override { return kinetics().temperature(); }
+    double degrees_of_freedom() const override { return kinetics().total_freedom; }
     double pressure() override {
-        const double t = engine_->time(), T = temperature();
+        const double t = engine_->time();
+        const SpeciesKinetics k = kinetics();
+        const double T = k.temperature();
         const double P = interval_pressure(engine_->box(), last_counters_, engine_->counters(),
-                                           t - last_time_, 0.5 * (last_T_ + T), mobile_);
+                                           t - last_time_, 0.5 * (last_T_ + T), k.total_freedom);
         last_counters_ = engine_->counters();
         last_time_ = t;
         last_T_ = T;
@@ -68,14 +73,12 @@ template <int D, class Engine> class Gas : public GasModel {
         const Box<D> box = build_box<D>(c);
         ParticleStore<D> p = build_particles<D>(c, box);
         table_ = p.species_table;
-        mobile_ = 0;
-        for (std::size_t i = 0; i < p.size(); ++i) mobile_ += std::isfinite(p.mass(i)) ? 1 : 0;
         engine_ = make(std::move(p), box);
         last_time_ = engine_->time();
         last_T_ = temperature();
     }
-    double temperature() const {
-        return mobile_ ? 2.0 * engine_->kinetic_energy() / (D * static_cast<double>(mobile_)) : 0.0;
+    SpeciesKinetics kinetics() const {
+        return measure_kinetics(store(), engine_->box(), hard_particle_dynamics);
     }
     std::uint64_t collision_limit(double per_particle) const {
         return static_cast<std::uint64_t>(std::ceil(per_particle * static_cast<double>(size())));
@@ -84,7 +87,6 @@ template <int D, class Engine> class Gas : public GasModel {
 
     std::unique_ptr<Engine> engine_;
     std::vector<Species> table_;
-    std::size_t mobile_ = 0;
     EventCounters<D> last_counters_{};
     double last_time_ = 0.0, last_T_ = 0.0;
 };

@@ -44,6 +44,9 @@ class GasModel {
     virtual std::uint64_t pair_collisions() const = 0;
     virtual std::uint64_t wall_collisions() const = 0;
     virtual double kinetic_energy() const = 0;
+    // 2 K / f in the centre-of-mass frame, f the degrees of freedom (observe/thermo.hpp)
+    virtual double temperature() const = 0;
+    virtual double degrees_of_freedom() const = 0;
     // Pressure since the previous call (or since t = 0): momentum given to the walls per
     // unit time and area on walled axes, the collision virial on periodic ones, with the
     // mean of the temperatures at both ends as log.csv has it.

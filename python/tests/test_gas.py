@@ -92,3 +92,28 @@ def test_event_and_stepped_agree_on_the_pressure():
         g.run(time=220.0)
         pressures.append(g.pressure())
     assert pressures[1] == pytest.approx(pressures[0], rel=0.04)
+
+
+@pytest.mark.parametrize("boundary, conserved", [('"periodic"', 2), ('"wall"', 0),
+                                                 ('["wall", "periodic"]', 1)])
+def test_temperature_counts_the_degrees_of_freedom_the_dynamics_leaves(boundary, conserved):
+    # docs/engines.md, "Temperature and degrees of freedom": f = d N - c, with c the
+    # momentum components the dynamics conserves (one per periodic axis here)
+    n = 30
+    g = pedesis.Gas(f"""
+dimension = 2
+seed = 4
+[box]
+length = 20.0
+boundary = {boundary}
+[[species]]
+name = "disk"
+count = {n}
+temperature = 2.0
+""")
+    assert g.degrees_of_freedom() == 2 * n - conserved
+    # the Maxwell-Boltzmann start is scaled to the requested T under the same rule
+    assert g.temperature() == pytest.approx(2.0, rel=1e-12)
+    assert g.kinetic_energy() == pytest.approx(2.0 * (2 * n - conserved) / 2, rel=1e-12)
+    g.run(time=3.0)
+    assert g.temperature() == pytest.approx(2.0, rel=1e-10)  # elastic: K and T stay

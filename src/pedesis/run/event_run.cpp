@@ -56,7 +56,9 @@ template <int D> class EventRun {
             engine_ = std::make_unique<EventEngine<D>>(build_particles<D>(c_, box), box,
                                                        event_params(c_));
             state_.initial_kinetic = engine_->kinetic_energy();
-            state_.last_temperature = measure_kinetics(engine_->lazy_particles()).temperature(D);
+            state_.last_temperature =
+                measure_kinetics(engine_->lazy_particles(), box, hard_particle_dynamics)
+                    .temperature();
             state_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
         out_.open(",list_rebuilds");

@@ -72,13 +72,13 @@ template <int D>
 LogRow HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, double t,
                                  const EventCounters<D>& counters) {
     LogRow row;
-    row.kinetics = measure_kinetics(p);
+    row.kinetics = measure_kinetics(p, box, hard_particle_dynamics);
     const auto& k = row.kinetics;
-    const double T = k.temperature(D);
+    const double T = k.temperature();
     const double dt = t - record_.last_log_time;
     const double meanT = 0.5 * (T + record_.last_temperature);
     const double P =
-        interval_pressure(box, record_.last_counters, counters, dt, meanT, k.total_mobile);
+        interval_pressure(box, record_.last_counters, counters, dt, meanT, k.total_freedom);
     record_.integral_T_dt += meanT * dt;
     const double n = static_cast<double>(p.size());
     const auto C = counters.pair_collisions;
@@ -88,7 +88,7 @@ LogRow HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, d
         counters.wall_collisions, k.total_kinetic,
         record_.initial_kinetic > 0 ? k.total_kinetic / record_.initial_kinetic : 0.0, T);
     for (std::size_t s = 0; s < c_.species.size(); ++s)
-        row.csv += fmt::format(",{:.8g},{:.10g}", k.temperature(D, s), k.kinetic[s]);
+        row.csv += fmt::format(",{:.8g},{:.10g}", k.temperature(s), k.kinetic[s]);
     const double mft = C ? static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C))
                          : std::numeric_limits<double>::infinity();
     row.csv += fmt::format(",{:.8g},{:.8g},{:.8g},{:.8g}", dt > 0 ? P : 0.0, P_ideal,
@@ -140,10 +140,11 @@ template <int D> void HardRunOutput<D>::close() {
 template <int D>
 nlohmann::json HardRunOutput<D>::summary(const ParticleStore<D>& p, const Box<D>& box, double t,
                                          const EventCounters<D>& counters) const {
-    const auto k = measure_kinetics(p);
+    const auto k = measure_kinetics(p, box, hard_particle_dynamics);
     const double V = box.volume();
-    const double T_avg = t > 0 ? record_.integral_T_dt / t : k.temperature(D);
-    const double P = interval_pressure(box, EventCounters<D>{}, counters, t, T_avg, k.total_mobile);
+    const double T_avg = t > 0 ? record_.integral_T_dt / t : k.temperature();
+    const double P =
+        interval_pressure(box, EventCounters<D>{}, counters, t, T_avg, k.total_freedom);
     const double P_ideal = static_cast<double>(k.total_mobile) * T_avg / V;
     const double eta = packing_fraction(p, box);
     const auto C = counters.pair_collisions;
@@ -155,12 +156,13 @@ nlohmann::json HardRunOutput<D>::summary(const ParticleStore<D>& p, const Box<D>
     j["collisions_per_particle"] = static_cast<double>(C) / static_cast<double>(p.size());
     j["wall_collisions"] = counters.wall_collisions;
     j["packing_fraction"] = eta;
-    j["temperature"] = k.temperature(D);
+    j["temperature"] = k.temperature();
+    j["degrees_of_freedom"] = k.total_freedom;
     j["time_averaged_temperature"] = T_avg;
     j["energy_fraction"] =
         record_.initial_kinetic > 0 ? k.total_kinetic / record_.initial_kinetic : 0.0;
     for (std::size_t s = 0; s < c_.species.size(); ++s)
-        j["species"][c_.species[s].name] = {{"temperature", k.temperature(D, s)},
+        j["species"][c_.species[s].name] = {{"temperature", k.temperature(s)},
                                             {"kinetic_energy", k.kinetic[s]}};
     j["pressure"] = P;
     j["pressure_ideal_gas"] = P_ideal;
@@ -179,10 +181,11 @@ void HardRunOutput<D>::print_summary(std::ostream& console, const nlohmann::json
                                      const Box<D>& box) const {
     const double P = j["pressure"].template get<double>();
     const double P_ideal = j["pressure_ideal_gas"].template get<double>();
-    console << fmt::format("  temperature        {:.6g} (time average {:.6g}); energy "
-                           "remaining {:.4g} of initial\n",
+    console << fmt::format("  temperature        {:.6g} (time average {:.6g}, {:g} degrees of "
+                           "freedom); energy remaining {:.4g} of initial\n",
                            j["temperature"].template get<double>(),
                            j["time_averaged_temperature"].template get<double>(),
+                           j["degrees_of_freedom"].template get<double>(),
                            j["energy_fraction"].template get<double>());
     if (c_.species.size() > 1)
         for (const auto& s : c_.species)

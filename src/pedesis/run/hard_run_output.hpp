@@ -20,6 +20,10 @@
 
 namespace pedesis {
 
+// Collisions, elastic or not, conserve momentum: only walls and fixed obstacles (which
+// thermo.hpp sees in the box and the masses) take degrees of freedom back.
+inline constexpr Momentum hard_particle_dynamics = Momentum::conserving;
+
 // What the run directory accumulates, kept in checkpoints so that a continued run
 // writes what the uninterrupted one would have.
 template <int D> struct HardRunRecord {

@@ -11,7 +11,7 @@ namespace pedesis {
 namespace {
 
 constexpr std::uint64_t soft_checkpoint_magic = 0x31544653444550ull; // "PEDSFT1"
-constexpr std::uint32_t soft_checkpoint_version = 2;
+constexpr std::uint32_t soft_checkpoint_version = 3; // 3: the run's summed temperature
 
 // The state's arrays in checkpoint order; one list serves saving and loading.
 template <class State, class F> void for_each_array(State& s, F&& f) {
@@ -46,6 +46,7 @@ void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>&
             binary::put(out, book.samples);
             binary::put(out, book.sum_pressure);
             binary::put(out, book.sum_polar_order);
+            binary::put(out, book.sum_temperature);
         },
         true);
 }
@@ -73,6 +74,7 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
         binary::get(in, book.samples);
         binary::get(in, book.sum_pressure);
         binary::get(in, book.sum_polar_order);
+        binary::get(in, book.sum_temperature);
         const std::size_t n = s.p.position.size();
         if (s.p.velocity.size() != n || s.p.tag.size() != n || s.p.species.size() != n ||
             s.director.size() != n || s.force.size() != n || s.torque.size() != n ||

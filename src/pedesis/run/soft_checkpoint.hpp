@@ -19,6 +19,7 @@ template <int D> struct SoftRunBook {
     std::uint64_t frames = 0;
     std::uint64_t samples = 0; // logged rows that enter the run averages
     double sum_pressure = 0.0, sum_polar_order = 0.0;
+    double sum_temperature = 0.0; // inertial runs (langevin, nve)
 };
 
 template <int D>

@@ -8,9 +8,11 @@
 #include "pedesis/io/vtp_writer.hpp"
 #include "pedesis/io/xyz_writer.hpp"
 #include "pedesis/observe/soft_observables.hpp"
+#include "pedesis/observe/thermo.hpp"
 #include "pedesis/run/run_directory.hpp"
 #include "pedesis/run/soft_checkpoint.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
+#include "pedesis/setup/build_system.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
 #include <fmt/format.h>
@@ -143,7 +145,7 @@ template <int D> class SoftRun {
         prepare_run_directory(o_.out_dir, o_.config_path, {"summary.json"});
         log_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "log.csv");
         std::string header = "step,time,polar_order,msd,potential_energy,";
-        if (inertial()) header += "kinetic_energy,";
+        if (inertial()) header += "kinetic_energy,temperature,";
         header += "pressure,pressure_ideal,pressure_virial,pressure_active,list_rebuilds\n";
         log_->append(header);
         if (wants("xyz"))
@@ -157,10 +159,12 @@ template <int D> class SoftRun {
         const auto& s = state_;
         const PairTotals pair = evolver_->pair_totals();
         const double V = s.box.volume();
-        double ideal = 0.0, kinetic = 0.0;
+        double ideal = 0.0;
+        SpeciesKinetics k;
         if (inertial()) {
-            kinetic = kinetic_energy(s);
-            ideal = 2.0 * kinetic / (D * V);
+            // the kinetic part of P V is 2 K / d in the centre-of-mass frame, f T / d
+            k = measure_kinetics(s.p, s.box, momentum_);
+            ideal = 2.0 * k.total_thermal / (D * V);
         } else {
             for (std::size_t i = 0; i < s.size(); ++i) ideal += brownian_T_[s.p.species[i]];
             ideal /= V;
@@ -171,7 +175,7 @@ template <int D> class SoftRun {
         const double order = polar_order(s);
         std::string row = fmt::format("{},{:.10g},{:.8g},{:.10g},{:.10g},", s.step, s.time, order,
                                       mean_squared_displacement(s, book_.start), pair.energy);
-        if (inertial()) row += fmt::format("{:.10g},", kinetic);
+        if (inertial()) row += fmt::format("{:.10g},{:.10g},", k.total_kinetic, k.temperature());
         row += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{}\n", pressure, ideal, virial, active,
                            evolver_->list_builds());
         log_->append(row);
@@ -179,6 +183,7 @@ template <int D> class SoftRun {
             ++book_.samples;
             book_.sum_pressure += pressure;
             book_.sum_polar_order += order;
+            book_.sum_temperature += k.temperature();
         }
         progress(order, pressure);
     }
@@ -244,6 +249,12 @@ template <int D> class SoftRun {
         j["mean_pressure"] = book_.samples ? book_.sum_pressure / book_.samples : 0.0;
         j["mean_polar_order"] = book_.samples ? book_.sum_polar_order / book_.samples : 0.0;
         j["logged_samples"] = book_.samples;
+        if (inertial()) {
+            const SpeciesKinetics k = measure_kinetics(state_.p, state_.box, momentum_);
+            j["temperature"] = k.temperature();
+            j["mean_temperature"] = book_.samples ? book_.sum_temperature / book_.samples : 0.0;
+            j["degrees_of_freedom"] = k.total_freedom;
+        }
         j["list_rebuilds"] = evolver_->list_builds();
         j["frames"] = book_.frames;
         j["wall_seconds"] = wall;
@@ -268,6 +279,7 @@ template <int D> class SoftRun {
     std::unique_ptr<Evolver<D>> evolver_;
     SoftRunBook<D> book_;
     std::vector<double> alpha_, brownian_T_;
+    const Momentum momentum_ = momentum_of(c_);
     std::unique_ptr<AtomicAppendFile> log_, trajectory_;
     std::unique_ptr<GsdWriter<D>> gsd_;
     std::uint64_t last_frame_step_ = 0;

@@ -87,7 +87,8 @@ template <int D> class SteppedRun {
             check_time_step(p, c_.dt, c_.max_move, c_.dt_where, samples_);
             engine_ = std::make_unique<SteppedEngine<D>>(std::move(p), box, stepped_params(c_));
             state_.initial_kinetic = engine_->kinetic_energy();
-            state_.last_temperature = measure_kinetics(engine_->particles()).temperature(D);
+            state_.last_temperature =
+                measure_kinetics(engine_->particles(), box, hard_particle_dynamics).temperature();
             state_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
         const std::size_t n = engine_->size();
@@ -172,12 +173,12 @@ template <int D> class SteppedRun {
 
     // The running pressure of the notebook: everything the walls (or, on periodic axes,
     // the collisions) have received since t = 0, over the whole time.
-    double running_pressure(std::size_t mobile) const {
+    double running_pressure(double degrees_of_freedom) const {
         const auto& e = *engine_;
         const double t = e.time();
         if (!(t > 0)) return 0.0;
         return interval_pressure(e.box(), EventCounters<D>{}, e.counters(), t,
-                                 state_.integral_T_dt / t, mobile);
+                                 state_.integral_T_dt / t, degrees_of_freedom);
     }
 
     void log_row() {
@@ -193,7 +194,7 @@ template <int D> class SteppedRun {
         const auto mobile =
             static_cast<double>(std::max<std::size_t>(row.kinetics.total_mobile, 1));
         const double v_rms = std::sqrt(sum_v2 / mobile);
-        const double P_run = running_pressure(row.kinetics.total_mobile);
+        const double P_run = running_pressure(row.kinetics.total_freedom);
         out_.append_log(row.csv + fmt::format(",{},{:.8g},{:.8g},{:.8g}\n", e.steps(), v_rms,
                                               sum_v / mobile, P_run));
         // the notebook's line, once per log row

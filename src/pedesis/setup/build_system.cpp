@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/tutorial_json.hpp"
+#include "pedesis/observe/thermo.hpp"
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/setup/random_placement.hpp"
 #include "pedesis/setup/velocities.hpp"
@@ -96,10 +97,13 @@ void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::si
     }
 }
 
+// Draws the velocities of species s; returns the particles whose Maxwell-Boltzmann
+// velocities still have to be brought to the species' temperature (see build_particles).
 template <int D>
-void draw_species_velocities(const RunConfig& c, ParticleStore<D>& p, std::size_t s,
-                             const std::vector<std::size_t>& members,
-                             const std::vector<bool>& from_file) {
+std::vector<std::size_t> draw_species_velocities(const RunConfig& c, ParticleStore<D>& p,
+                                                 std::size_t s,
+                                                 const std::vector<std::size_t>& members,
+                                                 const std::vector<bool>& from_file) {
     const SpeciesConfig& sp = c.species[s];
     VelocitySpec spec;
     try {
@@ -127,13 +131,26 @@ void draw_species_velocities(const RunConfig& c, ParticleStore<D>& p, std::size_
             p.velocity[i] = draw_velocity<D>(spec, sp.mass, c.seed, p.tag[i]);
         drawn.push_back(i);
     }
-    if (std::isinf(sp.mass) || drawn.empty()) return;
+    if (std::isinf(sp.mass) || drawn.empty()) return {};
     const bool random_kind = spec.kind == VelocityKind::uniform ||
                              spec.kind == VelocityKind::normal ||
                              spec.kind == VelocityKind::maxwell_boltzmann;
     if (c.zero_momentum && random_kind && drawn.size() > 1) remove_drift(p, drawn);
-    if (spec.kind == VelocityKind::maxwell_boltzmann && drawn.size() > 1)
-        rescale_temperature(p, drawn, sp.temperature);
+    if (spec.kind == VelocityKind::maxwell_boltzmann && drawn.size() > 1) return drawn;
+    return {};
+}
+
+// True if a self-propulsion term gives any species a non-zero force.
+bool self_propelled(const RunConfig& c) {
+    for (const auto& f : c.forces) {
+        if (f.name != "self_propulsion") continue;
+        for (const auto& [key, param] : f.params) {
+            if (param.uniform && *param.uniform != 0.0) return true;
+            for (const auto& [species, value] : param.by_species)
+                if (value != 0.0) return true;
+        }
+    }
+    return false;
 }
 
 } // namespace
@@ -229,9 +246,32 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
         }
         members[species[i]].push_back(i);
     }
+    std::vector<std::vector<std::size_t>> maxwell(c.species.size());
     for (std::size_t s = 0; s < c.species.size(); ++s)
-        draw_species_velocities(c, p, s, members[s], from_file);
+        maxwell[s] = draw_species_velocities(c, p, s, members[s], from_file);
+
+    // A Maxwell-Boltzmann start with zero momentum, in a system that keeps it zero, gets
+    // the requested temperature as observe/thermo.hpp measures it: each species gives up
+    // its mass share of the conserved momentum components.
+    const auto axes = conserved_momentum_axes(p, box, momentum_of(c));
+    const double conserved =
+        c.zero_momentum ? static_cast<double>(std::count(axes.begin(), axes.end(), true)) : 0.0;
+    double total_mass = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        if (std::isfinite(p.mass(i))) total_mass += p.mass(i);
+    for (std::size_t s = 0; s < c.species.size(); ++s) {
+        if (maxwell[s].empty()) continue;
+        const double share =
+            conserved * c.species[s].mass * static_cast<double>(maxwell[s].size()) / total_mass;
+        rescale_temperature(p, maxwell[s], c.species[s].temperature, share);
+    }
     return p;
+}
+
+Momentum momentum_of(const RunConfig& c) {
+    if (c.dynamics == "event" || c.dynamics == "stepped") return Momentum::conserving;
+    if (c.dynamics == "nve" && !self_propelled(c)) return Momentum::conserving;
+    return Momentum::not_conserving;
 }
 
 template Box<2> build_box<2>(const RunConfig&);

@@ -66,7 +66,8 @@ template <int D> void remove_drift(ParticleStore<D>& p, const std::vector<std::s
 }
 
 template <int D>
-void rescale_temperature(ParticleStore<D>& p, const std::vector<std::size_t>& which, double T) {
+void rescale_temperature(ParticleStore<D>& p, const std::vector<std::size_t>& which, double T,
+                         double removed_freedom) {
     double twice_kinetic = 0.0;
     std::size_t mobile = 0;
     for (std::size_t i : which) {
@@ -75,8 +76,9 @@ void rescale_temperature(ParticleStore<D>& p, const std::vector<std::size_t>& wh
         twice_kinetic += m * norm2(p.velocity[i]);
         ++mobile;
     }
-    if (mobile == 0 || twice_kinetic == 0.0) return;
-    const double current = twice_kinetic / (D * static_cast<double>(mobile));
+    const double freedom = D * static_cast<double>(mobile) - removed_freedom;
+    if (mobile == 0 || twice_kinetic == 0.0 || !(freedom > 0.0)) return;
+    const double current = twice_kinetic / freedom;
     const double s = std::sqrt(T / current);
     for (std::size_t i : which) p.velocity[i] *= s;
 }
@@ -85,7 +87,9 @@ template Vec<2> draw_velocity<2>(const VelocitySpec&, double, std::uint64_t, std
 template Vec<3> draw_velocity<3>(const VelocitySpec&, double, std::uint64_t, std::uint32_t);
 template void remove_drift(ParticleStore<2>&, const std::vector<std::size_t>&);
 template void remove_drift(ParticleStore<3>&, const std::vector<std::size_t>&);
-template void rescale_temperature(ParticleStore<2>&, const std::vector<std::size_t>&, double);
-template void rescale_temperature(ParticleStore<3>&, const std::vector<std::size_t>&, double);
+template void rescale_temperature(ParticleStore<2>&, const std::vector<std::size_t>&, double,
+                                  double);
+template void rescale_temperature(ParticleStore<3>&, const std::vector<std::size_t>&, double,
+                                  double);
 
 } // namespace pedesis

@@ -26,8 +26,12 @@ Vec<D> draw_velocity(const VelocitySpec& spec, double mass, std::uint64_t seed, 
 // Removes the centre-of-mass velocity of the mobile particles among `which`.
 template <int D> void remove_drift(ParticleStore<D>& p, const std::vector<std::size_t>& which);
 
-// Scales the velocities of `which` so that their kinetic temperature is exactly T.
+// Scales the velocities of `which` so that their kinetic temperature is exactly T:
+// sum m v^2 = T (d n - removed_freedom) over their n mobile particles, where
+// removed_freedom is their share of the momentum components the dynamics conserves
+// (c m_which / M, see observe/thermo.hpp; 0 when nothing is conserved).
 template <int D>
-void rescale_temperature(ParticleStore<D>& p, const std::vector<std::size_t>& which, double T);
+void rescale_temperature(ParticleStore<D>& p, const std::vector<std::size_t>& which, double T,
+                         double removed_freedom = 0.0);
 
 } // namespace pedesis

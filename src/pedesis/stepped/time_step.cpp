@@ -48,7 +48,8 @@ double expected_collisions_per_particle(const ParticleStore<D>& p, const Box<D>&
         mass += p.mass(i);
         ++mobile;
     }
-    const double T = measure_kinetics(p).temperature(D);
+    // lab-frame speeds set the collision rate and the step: no centre-of-mass correction
+    const double T = measure_kinetics<D>(p, std::array<bool, D>{}).temperature();
     if (mobile == 0 || !(T > 0.0) || !(duration > 0.0)) return 0.0;
     const double n = static_cast<double>(p.size()) / box.volume();
     const double m = static_cast<double>(mobile);
@@ -57,7 +58,7 @@ double expected_collisions_per_particle(const ParticleStore<D>& p, const Box<D>&
 
 template <int D>
 double suggested_time_step(const ParticleStore<D>& p, double max_move, double samples) {
-    const double T = measure_kinetics(p).temperature(D);
+    const double T = measure_kinetics<D>(p, std::array<bool, D>{}).temperature();
     const double tail = 2.0 * (std::log(std::max(samples, 1.0)) + 6.0);
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < p.size(); ++i) {
