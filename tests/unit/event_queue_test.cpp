@@ -1,5 +1,8 @@
 // EventQueue: the top is always the (time, index) minimum of a reference array under
-// random updates, and draining the queue yields the reference's sorted order.
+// random updates, and draining the queue yields the reference's sorted order; on
+// engine-like workloads (times that only move forward, event rates that change by
+// orders of magnitude, events far beyond the calendar's reach) the bucket calendar
+// pops exactly the sequence of a reference ordered set.
 #include "pedesis/core/rng.hpp"
 #include "pedesis/event/event_queue.hpp"
 
@@ -8,6 +11,8 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <set>
+#include <utility>
 #include <vector>
 
 using namespace pedesis;
@@ -122,4 +127,77 @@ TEST(EventQueue, OrderIndependentOfHistory) {
         a.update(k, x);
         b.update(k, x);
     }
+}
+
+namespace {
+
+// Pops `events` events as the engine does (take the top, give it a later time; now and
+// then give a random other particle a new time after now) and checks every pop against
+// a std::set of (time, index). `scale(k)` is the typical wait at pop k.
+template <class Scale>
+void engine_like_workload(std::uint32_t n, int events, std::uint64_t seed, Scale scale) {
+    CounterRng rng(seed, RngStream::placement, n);
+    std::vector<double> t(n);
+    std::set<std::pair<double, std::uint32_t>> reference;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        t[i] = rng.uniform() < 0.01 ? inf : rng.uniform(0.0, scale(0));
+        reference.insert({t[i], i});
+    }
+    EventQueue q;
+    q.build(t);
+    const auto set_time = [&](std::uint32_t i, double x) {
+        reference.erase({t[i], i});
+        t[i] = x;
+        reference.insert({x, i});
+        q.update(i, x);
+    };
+    for (int k = 0; k < events; ++k) {
+        const auto [now, who] = *reference.begin();
+        ASSERT_EQ(q.top_time(), now) << "pop " << k;
+        ASSERT_EQ(q.top(), who) << "pop " << k;
+        if (now == inf) return; // nothing left to happen
+        const double u = rng.uniform();
+        // mostly near future, sometimes far beyond the calendar (overflow), sometimes never
+        const double wait = u < 0.9 ? rng.uniform(0.0, scale(k)) : u < 0.99 ? 1e4 * scale(k) : inf;
+        set_time(who, now + wait);
+        if (rng.uniform() < 0.5) {
+            const auto other = static_cast<std::uint32_t>(rng.uniform() * n) % n;
+            if (other != who) set_time(other, now + rng.uniform(0.0, 2.0 * scale(k)));
+        }
+    }
+}
+
+} // namespace
+
+TEST(EventQueue, CalendarPopsInExactTimeOrder) {
+    for (std::uint32_t n : {1u, 5u, 100u, 5000u})
+        engine_like_workload(n, 200000, 3, [](int) { return 1.0; });
+}
+
+TEST(EventQueue, CalendarFollowsEventRatesThatChangeByOrdersOfMagnitude) {
+    // a gas that cools (waits grow 10^4-fold) and then is compressed (waits shrink again):
+    // the bucket width must be chosen anew, and the order must never change
+    engine_like_workload(2000, 300000, 4, [](int k) {
+        const double x = static_cast<double>(k) / 300000.0;
+        return std::pow(10.0, 4.0 * std::sin(3.14159 * x));
+    });
+}
+
+TEST(EventQueue, CalendarWithTiesAndTimesFarApart) {
+    // equal times (ties broken by index) and a few events 1e12 ahead of the rest
+    const std::uint32_t n = 1000;
+    std::vector<double> t(n);
+    for (std::uint32_t i = 0; i < n; ++i) t[i] = i % 10 == 0 ? 1e12 + i % 3 : std::floor(i / 7.0);
+    EventQueue q;
+    q.build(t);
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return t[a] < t[b]; });
+    for (std::uint32_t k = 0; k < n; ++k) {
+        ASSERT_EQ(q.top(), order[k]) << k;
+        ASSERT_EQ(q.top_time(), t[order[k]]);
+        q.update(order[k], inf);
+    }
+    EXPECT_EQ(q.top_time(), inf);
 }
