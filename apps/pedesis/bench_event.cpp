@@ -12,6 +12,8 @@
 #include <memory>
 #include <numbers>
 
+#include <sys/resource.h>
+
 namespace pedesis::cli {
 
 namespace {
@@ -24,16 +26,61 @@ struct BenchEventOptions {
     double warmup = 2.0;
     double skin = -1.0;
     std::uint64_t seed = 1;
+    double size_ratio = 1.0; // < 1: equimolar binary mixture of diameters 1 and size_ratio
 };
+
+// An equimolar binary mixture in the rock-salt arrangement: the large spheres
+// (diameter 1) on an FCC lattice of n_c^3 cubic cells, the small ones (diameter
+// size_ratio) in its octahedral holes, which sit half a cell edge along x from every
+// lattice site. The holes leave room for a small sphere while the cell edge a
+// satisfies a / 2 >= (1 + size_ratio) / 2, i.e. at low enough packing fraction.
+ParticleStore<3> rock_salt_mixture(const BenchEventOptions& o, double L) {
+    const auto cells = static_cast<std::size_t>(std::llround(std::cbrt(o.n / 8.0)));
+    if (8 * cells * cells * cells != o.n)
+        throw InputError(fmt::format("bench event: --size-ratio needs --n = 8 k^3 (e.g. 32768 "
+                                     "or 1000000), not {}",
+                                     o.n));
+    const double a = L / static_cast<double>(cells);
+    if (a < 1.0 + o.size_ratio)
+        throw InputError(fmt::format("bench event: at eta {} the rock-salt start has no room "
+                                     "for --size-ratio {} (cell edge {:.4f} < 1 + ratio); lower "
+                                     "--eta",
+                                     o.eta, o.size_ratio, a));
+    ParticleStore<3> p;
+    p.species_table = {Species{"L", 0.5, 1.0}, Species{"S", 0.5 * o.size_ratio, 1.0}};
+    p.resize(o.n);
+    const std::array<Vec<3>, 4> basis{Vec<3>{{0.0, 0.0, 0.0}}, Vec<3>{{0.5, 0.5, 0.0}},
+                                      Vec<3>{{0.5, 0.0, 0.5}}, Vec<3>{{0.0, 0.5, 0.5}}};
+    std::size_t k = 0;
+    for (std::size_t x = 0; x < cells; ++x)
+        for (std::size_t y = 0; y < cells; ++y)
+            for (std::size_t z = 0; z < cells; ++z)
+                for (const auto& b : basis)
+                    for (std::uint16_t s = 0; s < 2; ++s) {
+                        const Vec<3> cell{{static_cast<double>(x), static_cast<double>(y),
+                                           static_cast<double>(z)}};
+                        const Vec<3> hole{{0.5 * s, 0.0, 0.0}};
+                        p.position[k] = (cell + b + hole) * a - Vec<3>::filled(0.5 * L) +
+                                        Vec<3>::filled(0.25 * a);
+                        p.species[k] = s;
+                        ++k;
+                    }
+    return p;
+}
 
 template <int D> void run_bench(const BenchEventOptions& o) {
     if (o.n == 0) throw InputError("bench event: --n must be positive");
     const double max_eta = D == 2 ? 0.85 : 0.70;
     if (!(o.eta > 0.0 && o.eta < max_eta))
         throw InputError(fmt::format("bench event: --eta must lie in (0, {})", max_eta));
+    const bool mixture = o.size_ratio != 1.0;
+    if (mixture && (D != 3 || !(o.size_ratio > 0.0 && o.size_ratio < 1.0)))
+        throw InputError("bench event: --size-ratio must lie in (0, 1), in 3D");
     const double sigma = 1.0;
-    const double particle_volume = D == 2 ? std::numbers::pi * sigma * sigma / 4.0
-                                          : std::numbers::pi * sigma * sigma * sigma / 6.0;
+    const double ball = D == 2 ? std::numbers::pi / 4.0 : std::numbers::pi / 6.0;
+    // mean particle volume: equal numbers of diameters 1 and size_ratio in a mixture
+    const double particle_volume =
+        mixture ? 0.5 * ball * (1.0 + std::pow(o.size_ratio, D)) : ball * std::pow(sigma, D);
     const double L = std::pow(static_cast<double>(o.n) * particle_volume / o.eta, 1.0 / D);
     Box<D> box(Vec<D>::filled(L), [] {
         std::array<bool, D> p;
@@ -42,19 +89,23 @@ template <int D> void run_bench(const BenchEventOptions& o) {
     }());
 
     ParticleStore<D> p;
-    p.species_table = {Species{"A", 0.5 * sigma, 1.0}};
-    const auto kind = D == 2 ? LatticeKind::hexagonal : LatticeKind::fcc;
-    std::array<bool, D> open{};
-    p.resize(o.n);
-    p.position =
-        lattice_sites<D>(kind, Vec<D>::filled(-0.5 * L), Vec<D>::filled(0.5 * L), open, o.n);
+    if constexpr (D == 3) {
+        if (mixture) p = rock_salt_mixture(o, L);
+    }
+    if (!mixture) {
+        p.species_table = {Species{"A", 0.5 * sigma, 1.0}};
+        const auto kind = D == 2 ? LatticeKind::hexagonal : LatticeKind::fcc;
+        std::array<bool, D> open{};
+        p.resize(o.n);
+        p.position =
+            lattice_sites<D>(kind, Vec<D>::filled(-0.5 * L), Vec<D>::filled(0.5 * L), open, o.n);
+    }
     VelocitySpec vs;
     vs.kind = VelocityKind::maxwell_boltzmann;
     vs.temperature = 1.0;
     std::vector<std::size_t> all(o.n);
     for (std::size_t i = 0; i < o.n; ++i) {
         p.tag[i] = static_cast<std::uint32_t>(i);
-        p.species[i] = 0;
         p.velocity[i] = draw_velocity<D>(vs, 1.0, o.seed, p.tag[i]);
         all[i] = i;
     }
@@ -65,8 +116,10 @@ template <int D> void run_bench(const BenchEventOptions& o) {
     EventParams params;
     params.skin = o.skin;
     auto engine = std::make_unique<EventEngine<D>>(std::move(p), box, params);
-    fmt::print("bench event: dim {} N {} eta {} L {:.4f} skin {:.3f} time {} (after {} warm-up)\n",
-               D, o.n, o.eta, L, engine->skin(), o.time, o.warmup);
+    fmt::print(
+        "bench event: dim {} N {} eta {} L {:.4f} skin {:.3f} time {} (after {} warm-up){}\n", D,
+        o.n, o.eta, L, engine->skin(), o.time, o.warmup,
+        mixture ? fmt::format(", equimolar mixture, size ratio {}", o.size_ratio) : "");
     StopLimits warm;
     warm.time = o.warmup;
     engine->run(warm);
@@ -87,6 +140,11 @@ template <int D> void run_bench(const BenchEventOptions& o) {
     fmt::print("collisions_per_second: {:.0f}\n", collisions / seconds);
     fmt::print("bytes_per_particle: {:.1f}\n",
                static_cast<double>(engine->memory_bytes()) / static_cast<double>(o.n));
+    // the whole process's peak, setup included (ru_maxrss is in KiB on Linux)
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    fmt::print("max_rss_bytes_per_particle: {:.1f}\n",
+               1024.0 * static_cast<double>(usage.ru_maxrss) / static_cast<double>(o.n));
 }
 
 } // namespace
@@ -103,6 +161,9 @@ void add_bench_event(CLI::App& bench) {
     cmd->add_option("--skin", o->skin,
                     "Neighbour-list skin (default: chosen from the density, as in runs)");
     cmd->add_option("--seed", o->seed, "Random seed");
+    cmd->add_option("--size-ratio", o->size_ratio,
+                    "3D: equimolar binary mixture of diameters 1 and this ratio (< 1), started "
+                    "in the rock-salt arrangement; --n must be 8 k^3");
     cmd->callback([o] {
         if (o->dim == 2)
             run_bench<2>(*o);

@@ -100,6 +100,22 @@ TEST_F(CliRun, BenchPrintsItsFigures) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("collisions_per_second: "), std::string::npos);
     EXPECT_NE(r.output.find("bytes_per_particle: "), std::string::npos);
+    EXPECT_NE(r.output.find("max_rss_bytes_per_particle: "), std::string::npos);
+}
+
+TEST_F(CliRun, BenchRunsAMixtureAndRefusesImpossibleOnes) {
+    // 8 x 4^3 particles: 256 large and 256 small in the rock-salt arrangement
+    const CliResult r =
+        run_pedesis("bench event --n 512 --eta 0.3 --size-ratio 0.5 --time 0.3 --warmup 0.1", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("size ratio 0.5"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("collisions_per_second: "), std::string::npos);
+    for (const char* bad : {"--n 500 --size-ratio 0.5", "--n 512 --size-ratio 1.5",
+                            "--n 512 --size-ratio 0.9 --eta 0.6", "--dim 2 --size-ratio 0.5"}) {
+        const CliResult b = run_pedesis(std::string("bench event --time 0.1 ") + bad, dir);
+        EXPECT_EQ(b.exit_code, 2) << bad << ": " << b.output;
+        EXPECT_NE(b.output.find("--size-ratio"), std::string::npos) << bad << ": " << b.output;
+    }
 }
 
 } // namespace

@@ -3,7 +3,7 @@
 //
 // Design (after Smallenburg, Eur. Phys. J. E 45, 22 (2022), rewritten here):
 // - one pending event per particle: its earliest pair collision, wall collision or
-//   neighbour-shell exit, in an indexed heap;
+//   neighbour-shell exit, in a bucket calendar (event_queue.hpp);
 // - positions are advanced lazily: particle i stores r_i at its own time t_i;
 // - each particle keeps a neighbour list of everyone whose list centre lies within
 //   sigma_ij + skin of its own; a particle rebuilds its list (alone) when it has moved
