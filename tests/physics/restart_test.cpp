@@ -51,10 +51,20 @@ template <int D> void expect_same_state(const EventEngine<D>& a, const EventEngi
     EXPECT_EQ(bad_v, 0u) << "velocities differing in at least one bit";
 }
 
-template <int D> void restart_case(bool periodic, double restitution, double tc) {
+// size_ratio < 1: a mixture whose radii differ enough for two cell grids (size classes)
+template <int D>
+void restart_case(bool periodic, double restitution, double tc, double size_ratio = 1.0) {
     SCOPED_TRACE(std::string(periodic ? "periodic" : "walled") + " restitution " +
-                 std::to_string(restitution) + " tc " + std::to_string(tc));
-    auto gas = make_gas(equal_gas<D>(D == 2 ? 800 : 500, D == 2 ? 0.45 : 0.35, periodic, 77));
+                 std::to_string(restitution) + " tc " + std::to_string(tc) + " size ratio " +
+                 std::to_string(size_ratio));
+    auto spec = equal_gas<D>(D == 2 ? 800 : 500, D == 2 ? 0.45 : 0.35, periodic, 77);
+    if (size_ratio < 1.0) {
+        spec.species = {SpeciesSpec{D == 2 ? 100u : 60u, 0.5, 1.0, -1.0},
+                        SpeciesSpec{D == 2 ? 700u : 440u, 0.5 * size_ratio, 1.0, -1.0}};
+        spec.placement = Placement::random;
+        spec.eta = 0.3;
+    }
+    auto gas = make_gas(spec);
     EventParams params;
     params.restitution = restitution;
     params.wall_restitution = restitution;
@@ -115,6 +125,13 @@ TEST(Restart, BitForBitInelasticTcPeriodic3D) {
 }
 TEST(Restart, BitForBitInelasticTcWalled3D) {
     restart_case<3>(false, 0.7, 0.03);
+}
+
+TEST(Restart, BitForBitTwoSizeClasses2D) {
+    restart_case<2>(true, 1.0, 0.0, 0.25);
+}
+TEST(Restart, BitForBitTwoSizeClasses3D) {
+    restart_case<3>(false, 1.0, 0.0, 0.25);
 }
 
 TEST(Restart, ManyRestartsInARow) {

@@ -1,6 +1,8 @@
 // CellList: for random configurations the pairs found through for_each_near within the
 // cutoff are exactly the brute-force pairs, in periodic and walled boxes of several
-// shapes, including axes with only 1 or 2 cells; and no particle is visited twice.
+// shapes, including axes with only 1 or 2 cells; and no particle is visited twice. The
+// same for a reach of several cells (for_each_within, as the event engine's size classes
+// use it), including axes with fewer cells than the reach spans.
 #include "pedesis/core/rng.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
@@ -32,11 +34,12 @@ template <int D>
 std::set<std::pair<std::uint32_t, std::uint32_t>>
 cell_pairs(const Box<D>& box, const CellList<D>& cells, const std::vector<Vec<D>>& pos,
            double cutoff, const std::vector<bool>& present) {
+    const int m = cells.cells_to_reach(cutoff);
     std::set<std::pair<std::uint32_t, std::uint32_t>> s;
     for (std::uint32_t i = 0; i < pos.size(); ++i) {
         if (!present[i]) continue;
         std::vector<int> visits(pos.size(), 0);
-        cells.for_each_near(pos[i], [&](std::uint32_t j) {
+        cells.for_each_within(pos[i], m, [&](std::uint32_t j) {
             ++visits[j];
             if (j == i) return;
             if (norm2(box.minimum_image(pos[i] - pos[j])) < cutoff * cutoff)
@@ -54,12 +57,15 @@ cell_pairs(const Box<D>& box, const CellList<D>& cells, const std::vector<Vec<D>
 }
 
 template <int D>
-void check_box(const Box<D>& box, double cutoff, std::size_t n, std::uint64_t seed) {
-    SCOPED_TRACE(test::describe_box(box) + " cutoff " + std::to_string(cutoff));
+void check_box(const Box<D>& box, double cutoff, std::size_t n, std::uint64_t seed,
+               double min_cell = 0.0) {
+    if (min_cell == 0.0) min_cell = cutoff;
+    SCOPED_TRACE(test::describe_box(box) + " cutoff " + std::to_string(cutoff) + " cell " +
+                 std::to_string(min_cell));
     auto pos = test::random_positions(box, n, seed, 4);
-    CellList<D> cells(box, cutoff);
+    CellList<D> cells(box, min_cell);
     for (int a = 0; a < D; ++a)
-        EXPECT_GE(cells.cell_width(a), std::min(cutoff, box.length(a)) * (1 - 1e-12));
+        EXPECT_GE(cells.cell_width(a), std::min(min_cell, box.length(a)) * (1 - 1e-12));
     cells.build(pos);
     std::vector<bool> present(n, true);
     const auto expected = brute_pairs(box, pos, cutoff);
@@ -145,4 +151,21 @@ TEST(CellList, MatchesBruteForce3D) {
     }
     check_box(Box<3>(Vec<3>{{2.4, 5.0, 1.1}}, {true, false, true}), 1.0, 150, seed++);
     check_box(Box<3>(Vec<3>{{5.0, 2.1, 3.3}}, {false, true, false}), 1.0, 150, seed++);
+}
+
+TEST(CellList, WiderReachMatchesBruteForce) {
+    std::uint64_t seed = 500;
+    // cells of 0.3-0.45 and a cutoff of 1: reaches of 3-4 cells; axes with fewer cells
+    // than the 2m + 1 the reach spans, and walls
+    for (bool periodic : {true, false}) {
+        for (const auto& L : {Vec<2>{{1.5, 1.5}}, Vec<2>{{2.5, 9.0}}, Vec<2>{{10.0, 10.0}}})
+            check_box(Box<2>(L, {periodic, periodic}), 1.0, 200, seed++, 0.3);
+        for (const auto& L : {Vec<3>{{1.5, 2.0, 2.5}}, Vec<3>{{4.0, 4.0, 4.0}}})
+            check_box(Box<3>(L, {periodic, periodic, periodic}), 1.0, 200, seed++, 0.45);
+    }
+    check_box(Box<3>(Vec<3>{{2.4, 5.0, 1.1}}, {true, false, true}), 1.0, 150, seed++, 0.35);
+    // the usual stencil: a grid whose cells equal the reach scans one cell each way
+    CellList<2> cells(Box<2>(Vec<2>{{10.0, 10.0}}, {true, true}), 2.5);
+    EXPECT_EQ(cells.cells_to_reach(2.5), 1);
+    EXPECT_EQ(cells.cells_to_reach(2.6), 2);
 }

@@ -100,7 +100,7 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
             kinetic_ += 0.5 * norm2(p_.velocity[i]) / inv_mass_[p_.species[i]];
     kinetic_exact_ = kinetic_;
 
-    cells_ = CellList<D>(box_, max_contact + skin_);
+    make_grids();
     build_all_lists();
     check_no_overlap(1e-10);
     setup();
@@ -118,16 +118,69 @@ template <int D> double EventEngine<D>::default_skin(double mean_diameter) const
     return std::max(0.5 * mean_diameter, reach - mean_diameter);
 }
 
+// Size classes: species sorted by radius, largest first; a class takes every species
+// whose radius is at least half of its largest. One class (the usual case) gives one
+// grid with cells of the largest contact distance plus the skin.
+template <int D> void EventEngine<D>::make_grids() {
+    std::vector<double> radii = radius_;
+    std::sort(radii.begin(), radii.end(), std::greater<>());
+    class_radius_.clear();
+    constexpr std::size_t most_classes = 8; // the last takes every smaller radius
+    for (double r : radii)
+        if (class_radius_.empty() ||
+            (r < 0.5 * class_radius_.back() && class_radius_.size() < most_classes))
+            class_radius_.push_back(r);
+    class_of_.assign(radius_.size(), 0);
+    for (std::size_t s = 0; s < radius_.size(); ++s)
+        for (std::size_t k = 0; k < class_radius_.size(); ++k)
+            if (radius_[s] >= 0.5 * class_radius_[k] || k + 1 == class_radius_.size()) {
+                class_of_[s] = static_cast<std::uint8_t>(k);
+                break;
+            }
+    grids_.clear();
+    for (double r : class_radius_) grids_.emplace_back(box_, 2.0 * r + skin_);
+    // cells each class's particles scan in each grid: reach = the two classes' largest
+    // radii + skin (a hair below the exact ratio, so that rounding never widens the
+    // usual 3-cell stencil of a grid whose cells are exactly the reach)
+    const std::size_t classes = class_radius_.size();
+    reach_cells_.assign(classes * classes, 1);
+    for (std::size_t c = 0; c < classes; ++c)
+        for (std::size_t k = 0; k < classes; ++k)
+            reach_cells_[c * classes + k] = grids_[k].cells_to_reach(
+                (class_radius_[c] + class_radius_[k] + skin_) * (1.0 - 1e-12));
+}
+
+// Calls f(j) for every particle whose list centre may lie within contact + skin of i's:
+// in each class's grid, the cells within reach of i's class.
+template <int D>
+template <class F>
+void EventEngine<D>::for_each_candidate(std::uint32_t i, F&& f) const {
+    const std::size_t classes = grids_.size();
+    const std::size_t c = class_of_[p_.species[i]];
+    for (std::size_t k = 0; k < classes; ++k)
+        grids_[k].for_each_within(centre_[i], reach_cells_[c * classes + k], f);
+}
+
+template <int D> std::size_t EventEngine<D>::grids_memory() const {
+    std::size_t bytes = 0;
+    for (const auto& grid : grids_) bytes += grid.memory_bytes();
+    return bytes;
+}
+
 template <int D> void EventEngine<D>::build_all_lists() {
     const auto n = static_cast<std::uint32_t>(p_.size());
     centre_ = p_.position;
-    cells_.build(centre_);
+    for (std::size_t k = 0; k < grids_.size(); ++k) {
+        grids_[k].clear(n);
+        for (std::uint32_t i = n; i-- > 0;)
+            if (class_of_[p_.species[i]] == k) grids_[k].insert(i, centre_[i]);
+    }
     // size the lists from the real counts, with room to grow as the fluid moves
     std::vector<std::uint16_t> counts(n, 0);
     std::uint32_t max_count = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         std::uint32_t c = 0;
-        cells_.for_each_near(centre_[i], [&](std::uint32_t j) {
+        for_each_candidate(i, [&](std::uint32_t j) {
             if (j == i) return;
             const double cut = contact(i, j) + skin_;
             if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut) ++c;
@@ -138,7 +191,7 @@ template <int D> void EventEngine<D>::build_all_lists() {
     n_nbr_.assign(n, 0);
     nbr_.assign(static_cast<std::size_t>(n) * stride_, 0);
     for (std::uint32_t i = 0; i < n; ++i) {
-        cells_.for_each_near(centre_[i], [&](std::uint32_t j) {
+        for_each_candidate(i, [&](std::uint32_t j) {
             if (j <= i) return;
             const double cut = contact(i, j) + skin_;
             if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut) add_neighbor(i, j);
@@ -288,10 +341,11 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
     for (std::uint16_t k = 0; k < n_nbr_[i]; ++k) remove_neighbor(list[k], i);
     n_nbr_[i] = 0;
-    cells_.remove(i);
+    CellList<D>& grid = grids_[class_of_[p_.species[i]]];
+    grid.remove(i);
     centre_[i] = p_.position[i];
-    cells_.insert(i, centre_[i]);
-    cells_.for_each_near(centre_[i], [&](std::uint32_t j) {
+    grid.insert(i, centre_[i]);
+    for_each_candidate(i, [&](std::uint32_t j) {
         if (j == i) return;
         const double cut = contact(i, j) + skin_;
         if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut) add_neighbor(i, j);
@@ -413,12 +467,12 @@ template <int D> std::size_t EventEngine<D>::memory_bytes() const {
     return bytes(p_.position) + bytes(p_.velocity) + bytes(p_.tag) + bytes(p_.species) + bytes(t_) +
            bytes(centre_) + bytes(count_) + bytes(ev_time_) + bytes(ev_partner_) +
            bytes(ev_count_) + bytes(last_collision_) + bytes(n_nbr_) + bytes(nbr_) +
-           cells_.memory_bytes() + queue_.memory_bytes();
+           grids_memory() + queue_.memory_bytes();
 }
 
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" in memory order
-constexpr std::uint32_t checkpoint_version = 1;
+constexpr std::uint32_t checkpoint_version = 2;                   // 2: one cell list per size class
 } // namespace
 
 template <int D> void EventEngine<D>::save(std::ostream& out) const {
@@ -446,7 +500,7 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, stride_);
     put(out, n_nbr_);
     put(out, nbr_);
-    cells_.save([&](const auto& v) { put(out, v); });
+    for (const auto& grid : grids_) grid.save([&](const auto& v) { put(out, v); });
 }
 
 template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const EventParams& params) {
@@ -499,10 +553,8 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
         if (e.ev_partner_[i] >= static_cast<std::int32_t>(n))
             throw InputError("checkpoint: corrupt event");
     }
-    double max_radius = 0.0;
-    for (double r : e.radius_) max_radius = std::max(max_radius, r);
-    e.cells_ = CellList<D>(e.box_, 2.0 * max_radius + e.skin_);
-    e.cells_.load([&](auto& v) { get(in, v); });
+    e.make_grids();
+    for (auto& grid : e.grids_) grid.load([&](auto& v) { get(in, v); });
     e.queue_.build(e.ev_time_);
     return e;
 }

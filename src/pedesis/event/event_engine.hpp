@@ -129,7 +129,17 @@ template <int D> class EventEngine {
     std::vector<std::uint16_t> n_nbr_;
     std::vector<std::uint32_t> nbr_;
 
-    CellList<D> cells_; // over list centres
+    // Cell lists over the list centres, one per size class (species whose radii lie
+    // within a factor 2 of the class's largest), each with cells of the class's own
+    // contact distance plus the skin: a small particle's list rebuild then scans small
+    // cells for small partners instead of cells sized by the largest particle.
+    std::vector<CellList<D>> grids_;
+    std::vector<std::uint8_t> class_of_; // per species
+    std::vector<double> class_radius_;   // per class: its largest radius
+    std::vector<int> reach_cells_;       // [class of i][class of grid]: cells to scan
+    void make_grids();
+    template <class F> void for_each_candidate(std::uint32_t i, F&& f) const;
+    std::size_t grids_memory() const;
     EventQueue queue_;
     EventCounters<D> counters_;
     std::uint64_t stalled_events_ = 0;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -75,28 +76,54 @@ template <int D> class CellList {
 
     // Calls f(cell) once for every distinct cell adjacent to (or equal to) `cell`.
     template <class F> void for_each_neighbor_cell(std::int32_t cell, F&& f) const {
-        std::array<std::array<std::int32_t, 3>, D> offs;
+        for_each_cell_within(cell, 1, f);
+    }
+
+    // Calls f(cell) once for every distinct cell at most `m` cells from `cell` along each
+    // axis (m >= 1). Periodic axes wrap; an axis with fewer than 2m + 1 cells is scanned
+    // once, from `cell` on (the order of the m = 1 scan is that of a 3-cell stencil).
+    template <class F> void for_each_cell_within(std::int32_t cell, int m, F&& f) const {
+        // the usual 3-cell stencil gets offset tables of its own size (it runs for every
+        // list rebuild of the event engine); reaches of up to 8 cells share wider ones
+        if (m == 1)
+            scan_cells<3>(cell, m, f);
+        else
+            scan_cells<17>(cell, m, f);
+    }
+
+  private:
+    template <int most, class F> void scan_cells(std::int32_t cell, int m, F&& f) const {
+        // the cell offsets along each axis, wrapped and scaled by the stride
+        std::array<std::array<std::int32_t, most>, D> offs;
         std::array<int, D> count;
         for (int a = 0; a < D; ++a) {
             const int c = (cell / stride_[a]) % n_[a];
-            count[a] = 0;
             const int n = n_[a];
+            int first = 0, span = 0;
             if (box_.periodic(a)) {
-                if (n == 1) {
-                    offs[a][count[a]++] = 0;
-                } else if (n == 2) {
-                    offs[a][count[a]++] = c;
-                    offs[a][count[a]++] = 1 - c;
-                } else {
-                    offs[a][count[a]++] = (c + n - 1) % n;
-                    offs[a][count[a]++] = c;
-                    offs[a][count[a]++] = (c + 1) % n;
-                }
+                const bool whole = 2 * m + 1 > n || 2 * m + 1 > most;
+                first = whole ? c : c - m;
+                span = whole ? n : 2 * m + 1;
             } else {
-                for (int d = -1; d <= 1; ++d)
-                    if (c + d >= 0 && c + d < n) offs[a][count[a]++] = c + d;
+                first = std::max(0, c - m);
+                span = std::min(n - 1, c + m) - first + 1;
+                if (span > most) {
+                    first = 0;
+                    span = n;
+                }
             }
-            for (int k = 0; k < count[a]; ++k) offs[a][k] *= stride_[a];
+            if (span > most) {
+                // a reach wider than 8 cells along a long axis: every cell once
+                for (std::int32_t c2 = 0; c2 < static_cast<std::int32_t>(head_.size()); ++c2) f(c2);
+                return;
+            }
+            count[a] = span;
+            for (int k = 0; k < span; ++k) {
+                int x = first + k;
+                if (x < 0) x += n;
+                if (x >= n) x -= n;
+                offs[a][k] = x * stride_[a];
+            }
         }
         std::array<int, D> k{};
         while (true) {
@@ -109,12 +136,24 @@ template <int D> class CellList {
         }
     }
 
+  public:
     // Calls f(j) for every particle in the cells around position r.
     template <class F> void for_each_near(const Vec<D>& r, F&& f) const {
-        for_each_neighbor_cell(cell_index(r), [&](std::int32_t c) {
+        for_each_within(r, 1, f);
+    }
+    // The same for the cells at most m cells away along each axis.
+    template <class F> void for_each_within(const Vec<D>& r, int m, F&& f) const {
+        for_each_cell_within(cell_index(r), m, [&](std::int32_t c) {
             for (std::int32_t j = head_[c]; j != none; j = next_[j])
                 f(static_cast<std::uint32_t>(j));
         });
+    }
+    // Cells along each axis needed to reach distance `reach` from any point of a cell.
+    int cells_to_reach(double reach) const {
+        int m = 1;
+        for (int a = 0; a < D; ++a)
+            m = std::max(m, static_cast<int>(std::ceil(reach / cell_width(a))));
+        return m;
     }
 
     // Exact membership and order, for checkpoints (scan order decides ties).
@@ -132,7 +171,8 @@ template <int D> class CellList {
         bool ok = head_.size() == cells && next_.size() == cell_of_.size();
         for (auto h : head_) ok = ok && h >= none && h < n;
         for (auto h : next_) ok = ok && h >= none && h < n;
-        for (auto c : cell_of_) ok = ok && c >= 0 && c < static_cast<std::int32_t>(cells);
+        // none: a particle this list does not hold (the event engine's other size classes)
+        for (auto c : cell_of_) ok = ok && c >= none && c < static_cast<std::int32_t>(cells);
         if (!ok) throw InputError("checkpoint: cell list does not match the box (corrupt file)");
     }
 
