@@ -19,6 +19,7 @@
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/setup/build_system.hpp"
+#include "support/gas_builder.hpp"
 
 #include <gtest/gtest.h>
 
@@ -28,28 +29,19 @@
 #include <vector>
 
 using namespace pedesis;
+using namespace pedesis::test;
 
 namespace {
 
-struct Stats {
-    double mean = 0.0, std_error = 0.0;
-};
-
-Stats blocks_of(const std::vector<double>& x, std::size_t per_block) {
+// Mean and standard error from the means of consecutive blocks of `per_block` samples.
+BlockStats blocks_of(const std::vector<double>& x, std::size_t per_block) {
     std::vector<double> means;
     for (std::size_t b = 0; b + per_block <= x.size(); b += per_block) {
         double s = 0.0;
         for (std::size_t k = b; k < b + per_block; ++k) s += x[k];
         means.push_back(s / static_cast<double>(per_block));
     }
-    Stats st;
-    for (double m : means) st.mean += m;
-    st.mean /= static_cast<double>(means.size());
-    double var = 0.0;
-    for (double m : means) var += (m - st.mean) * (m - st.mean);
-    st.std_error =
-        std::sqrt(var / static_cast<double>(means.size() - 1) / static_cast<double>(means.size()));
-    return st;
+    return block_stats(means);
 }
 
 void mixture_case(std::size_t n) {
@@ -86,13 +78,14 @@ void mixture_case(std::size_t n) {
         total.push_back(m.temperature());
         heavy_dn.push_back(m.kinetic[1] / static_cast<double>(m.mobile[1]));
     }
-    const Stats l = blocks_of(light, 1000), h = blocks_of(heavy, 1000), t = blocks_of(total, 1000);
+    const BlockStats l = blocks_of(light, 1000), h = blocks_of(heavy, 1000),
+                     t = blocks_of(total, 1000);
     std::printf("N = %zu: T = %.6f, T_light = %.4f +- %.4f, T_heavy = %.4f +- %.4f (with d N_s: "
                 "%.4f) (%.1f collisions per particle)\n",
                 n, t.mean, l.mean, l.std_error, h.mean, h.std_error, blocks_of(heavy_dn, 1000).mean,
                 2.0 * static_cast<double>(e.counters().pair_collisions) / static_cast<double>(n));
     EXPECT_NEAR(t.mean, 1.0, 1e-9) << "elastic collisions keep T at its start value";
-    for (const Stats& s : {l, h}) {
+    for (const BlockStats& s : {l, h}) {
         EXPECT_LT(s.std_error, 0.004) << "run too short for the tolerance";
         EXPECT_NEAR(s.mean, 1.0, 0.015);
     }
