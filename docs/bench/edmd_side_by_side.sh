@@ -28,10 +28,16 @@
 #   line 22   double maxtime = 100;      -> WARMUP + TIME        (run from t = 0 to 22)
 #   line 23   int makesnapshots = 0;     -> 0                    (already 0; enforced)
 #   line 27   int initialconfig = 0;     -> 1                    (FCC start, no input file)
+#             (with SIZE_RATIO < 1: left at 0, and the script writes the start file
+#             init.sph in the peer's own text format: the rock-salt mixture that
+#             `pedesis bench event --size-ratio` builds, same positions and radii)
 #   line 29   double packfrac = 0.25;    -> ETA (0.45)
 #   line 30   int N = 4000;              -> 4 n^3 nearest to N   (32000 = 4*20^3,
 #                                                                  1000188 = 4*63^3)
 #   line 77   const int usethermostat = 1; -> EDMD_THERMOSTAT (default 0; see below)
+#   line 9    #define MAXNEIGH 24        -> 48, only with SIZE_RATIO < 1 (a large sphere
+#             among small ones has more than 24 partners in its 1.5-contact shell, and
+#             the peer stops with "Too many neighbors. Increase MAXNEIGH.")
 #   line 1    #include <time.h> added (clock_gettime)
 #   lines 88-92 (main): before the peer's own loop "while (simtime <= maxtime) step();"
 #             an untimed loop "while (simtime <= WARMUP) step();" is inserted, then
@@ -65,6 +71,10 @@
 #                    (N=1000000 -> peer 1000188, pedesis 1000000)
 #   PAIRS            alternations (peer, then pedesis)              [6]
 #   ETA              packing fraction                               [0.45]
+#   SIZE_RATIO       < 1: equimolar binary mixture, diameters 1 and SIZE_RATIO, in the
+#                    rock-salt arrangement (N must be 8 k^3, e.g. 32768); the peer's
+#                    Single/ reads it as its start file (its neighbour shell is 1.5 times
+#                    each pair's contact distance, its cells sized by the largest)  [1]
 #   WARMUP, TIME     untimed warm-up, then timed window (sim time)  [2, 20]
 #   EDMD_THERMOSTAT  peer's thermostat on (1) or off (0)            [0]
 #   PEDESIS          pedesis binary                                 [<repo>/build/pedesis]
@@ -94,6 +104,7 @@ ETA=${ETA:-0.45}
 WARMUP=${WARMUP:-2}
 TIME=${TIME:-20}
 EDMD_THERMOSTAT=${EDMD_THERMOSTAT:-0}
+SIZE_RATIO=${SIZE_RATIO:-1}
 PEDESIS=${PEDESIS:-$repo_root/build/pedesis}
 SCRATCH=${SCRATCH:-}
 KEEP_SCRATCH=${KEEP_SCRATCH:-0}
@@ -126,9 +137,24 @@ done
 [[ -x $PEDESIS ]] || die "pedesis binary not found or not executable: $PEDESIS (build it first, or set PEDESIS)"
 "$PEDESIS" bench event --help >/dev/null 2>&1 || die "$PEDESIS has no working 'bench event' subcommand"
 
-# Peer: nearest N = 4 n^3 (its FCC routine insists on a perfect cube of unit cells).
-ncell=$(awk -v n="$N" 'BEGIN { c = int(exp(log(n / 4) / 3) + 0.5); if (c < 1) c = 1; print c }')
-NPEER=$((4 * ncell * ncell * ncell))
+is_num "$SIZE_RATIO" && awk -v r="$SIZE_RATIO" 'BEGIN { exit !(r > 0 && r <= 1) }' ||
+    die "SIZE_RATIO must lie in (0, 1] (got '$SIZE_RATIO')"
+mixture=$(awk -v r="$SIZE_RATIO" 'BEGIN { print (r < 1) ? 1 : 0 }')
+
+# Peer: nearest N = 4 n^3 (its FCC routine insists on a perfect cube of unit cells);
+# a mixture has exactly N = 8 k^3 in both codes.
+if [[ $mixture == 1 ]]; then
+    ncell=$(awk -v n="$N" 'BEGIN { c = int(exp(log(n / 8) / 3) + 0.5); print c }')
+    ((8 * ncell * ncell * ncell == N)) || die "SIZE_RATIO < 1 needs N = 8 k^3 (e.g. 32768), not $N"
+    NPEER=$N
+    INITIALCONFIG=0
+    MAXNEIGH=48
+else
+    ncell=$(awk -v n="$N" 'BEGIN { c = int(exp(log(n / 4) / 3) + 0.5); if (c < 1) c = 1; print c }')
+    NPEER=$((4 * ncell * ncell * ncell))
+    INITIALCONFIG=1
+    MAXNEIGH=24
+fi
 MAXTIME=$(awk -v w="$WARMUP" -v t="$TIME" 'BEGIN { printf "%.10g", w + t }')
 
 # ---------------------------------------------------------------- scratch
@@ -182,9 +208,10 @@ cat >"$SCRATCH/bench.sed" <<EOF
 1i #include <time.h>
 s/^double maxtime = [-+0-9.eE]*;/double maxtime = $MAXTIME;/
 s/^int makesnapshots = [0-9]*;/int makesnapshots = 0;/
-s/^int initialconfig = [0-9]*;/int initialconfig = 1;/
+s/^int initialconfig = [0-9]*;/int initialconfig = $INITIALCONFIG;/
 s/^double packfrac = [-+0-9.eE]*;/double packfrac = $ETA;/
 s/^int N = [0-9]*;/int N = $NPEER;/
+s/^#define MAXNEIGH [0-9]*\$/#define MAXNEIGH $MAXNEIGH/
 s/^const int usethermostat = [0-9]*;/const int usethermostat = $EDMD_THERMOSTAT;/
 /^    while (simtime <= maxtime)\$/i\\
     /* bench: untimed warm-up, then time the window up to maxtime */\\
@@ -215,9 +242,10 @@ check() { # pattern count message
 check '^#include <time\.h>$' 1 "time.h"
 check "^double maxtime = $MAXTIME;" 1 "maxtime"
 check '^int makesnapshots = 0;' 1 "makesnapshots"
-check '^int initialconfig = 1;' 1 "initialconfig"
+check "^int initialconfig = $INITIALCONFIG;" 1 "initialconfig"
 check "^double packfrac = $ETA;" 1 "packfrac"
 check "^int N = $NPEER;" 1 "N"
+check "^#define MAXNEIGH $MAXNEIGH\$" 1 "MAXNEIGH"
 check "^const int usethermostat = $EDMD_THERMOSTAT;" 1 "usethermostat"
 check 'clock_gettime\(CLOCK_MONOTONIC, &bench_t0\)' 1 "timer start"
 check 'clock_gettime\(CLOCK_MONOTONIC, &bench_t1\)' 1 "timer stop"
@@ -229,6 +257,26 @@ added=$(grep -c '^+[^+]' "$SCRATCH/patch.diff" || true)
 removed=$(grep -c '^-[^-]' "$SCRATCH/patch.diff" || true)
 note "patched scratch copy: +$added/-$removed lines (diff in $SCRATCH/patch.diff)"
 [[ $SHOW_PATCH == 1 ]] && cat "$SCRATCH/patch.diff" >&2
+
+# The mixture's start in the peer's text format (N; box; "type x y z radius" per
+# particle, box from 0 to L): large spheres (diameter 1) on an FCC lattice of k^3
+# cells, each with a small one half a cell edge along x, as pedesis bench event does
+# (there the box runs from -L/2 to L/2).
+if [[ $mixture == 1 ]]; then
+    awk -v n="$N" -v k="$ncell" -v r="$SIZE_RATIO" -v eta="$ETA" 'BEGIN {
+        pi = 3.14159265358979323846
+        L = exp(log(n * 0.5 * (pi / 6) * (1 + r * r * r) / eta) / 3)
+        a = L / k
+        if (a < 1 + r) { print "no room for the rock-salt start at this ETA" > "/dev/stderr"; exit 1 }
+        split("0 0.5 0.5 0", bx, " "); split("0 0.5 0 0.5", by, " "); split("0 0 0.5 0.5", bz, " ")
+        printf "%d\n%.17g %.17g %.17g\n", n, L, L, L
+        for (x = 0; x < k; x++) for (y = 0; y < k; y++) for (z = 0; z < k; z++)
+            for (b = 1; b <= 4; b++) for (s = 0; s < 2; s++)
+                printf "%c %.17g %.17g %.17g %.17g\n", (s ? "b" : "a"),
+                    (x + bx[b] + 0.5 * s + 0.25) * a, (y + by[b] + 0.25) * a,
+                    (z + bz[b] + 0.25) * a, s ? 0.5 * r : 0.5
+    }' >"$peer/init.sph" || die "could not write the mixture start"
+fi
 
 # ---------------------------------------------------------------- build
 note "building the peer with its own Makefile in $peer"
@@ -249,9 +297,10 @@ if [[ -f $cache ]]; then
 fi
 echo "== EDMD (FSmallenburg/EDMD Single) vs pedesis bench event"
 echo "cpu:       ${cpu:-unknown}  ($(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg))"
-echo "peer:      $EDMD_SRC/Single, N $NPEER (4*${ncell}^3), thermostat $EDMD_THERMOSTAT"
+echo "peer:      $EDMD_SRC/Single, N $NPEER ($([[ $mixture == 1 ]] && echo 8 || echo 4)*${ncell}^3), thermostat $EDMD_THERMOSTAT"
 echo "peer cc:   ${peer_cc:-see $logs/build.log}"
 echo "pedesis:   $PEDESIS @ $ped_rev$ped_dirty${ped_flags:+, $ped_flags}, N $N"
+[[ $mixture == 1 ]] && echo "mixture:   equimolar, diameters 1 and $SIZE_RATIO, rock-salt start (peer: init.sph)"
 echo "system:    eta $ETA, 3D, warm-up t = 0..$WARMUP untimed, window t = $WARMUP..$MAXTIME timed, $PAIRS pair(s)"
 [[ $N == "$NPEER" ]] || echo "note:      peer N differs from pedesis N (the peer needs 4 n^3); rates are per collision, RSS per own N"
 echo
@@ -287,7 +336,8 @@ for ((i = 1; i <= PAIRS; i++)); do
     read -r pr pc pm <<<"$out"
     pcoll=$(awk '/^edmd_window:/ { for (k = 1; k < NF; k++) if ($k == "collisions") print $(k + 1) }' "$logs/peer.$i.log")
     out=$(cd "$SCRATCH" && run_one "pedesis (pair $i)" "$logs/pedesis.$i.log" "$logs/pedesis.$i.time" \
-        "$PEDESIS" bench event --dim 3 --n "$N" --eta "$ETA" --time "$TIME" --warmup "$WARMUP")
+        "$PEDESIS" bench event --dim 3 --n "$N" --eta "$ETA" --time "$TIME" --warmup "$WARMUP" \
+        --size-ratio "$SIZE_RATIO")
     read -r qr qc qm <<<"$out"
     qcoll=$(awk '/^collisions:/ { print $2; exit }' "$logs/pedesis.$i.log")
     printf '%s\tpeer\t%s\t%s\t%s\t%s\t%s\n' "$i" "$NPEER" "$pr" "${pcoll:-}" "$pc" "$pm" >>"$tsv"

@@ -37,6 +37,8 @@ template <int D> void expect_same_counters(const EventCounters<D>& a, const Even
 template <int D> void expect_same_state(const EventEngine<D>& a, const EventEngine<D>& b) {
     EXPECT_TRUE(same_bits(a.time(), b.time()));
     EXPECT_TRUE(same_bits(a.kinetic_energy(), b.kinetic_energy()));
+    EXPECT_TRUE(same_bits(a.packing_fraction(), b.packing_fraction()));
+    EXPECT_EQ(a.growth().steps, b.growth().steps);
     expect_same_counters(a.counters(), b.counters());
     const auto sa = a.snapshot(), sb = b.snapshot();
     ASSERT_EQ(sa.size(), sb.size());
@@ -51,12 +53,16 @@ template <int D> void expect_same_state(const EventEngine<D>& a, const EventEngi
     EXPECT_EQ(bad_v, 0u) << "velocities differing in at least one bit";
 }
 
-// size_ratio < 1: a mixture whose radii differ enough for two cell grids (size classes)
+// size_ratio < 1: a mixture whose radii differ enough for two cell grids (size classes);
+// growth_rate > 0: Lubachevsky-Stillinger growth all along both halves (the diameter
+// grows by 0.05 per unit time, so the packing fraction rises by about a third), which
+// needs the radii's reference time, rates, thermostat and pressure window saved
 template <int D>
-void restart_case(bool periodic, double restitution, double tc, double size_ratio = 1.0) {
+void restart_case(bool periodic, double restitution, double tc, double size_ratio = 1.0,
+                  double growth_rate = 0.0) {
     SCOPED_TRACE(std::string(periodic ? "periodic" : "walled") + " restitution " +
                  std::to_string(restitution) + " tc " + std::to_string(tc) + " size ratio " +
-                 std::to_string(size_ratio));
+                 std::to_string(size_ratio) + " growth " + std::to_string(growth_rate));
     auto spec = equal_gas<D>(D == 2 ? 800 : 500, D == 2 ? 0.45 : 0.35, periodic, 77);
     if (size_ratio < 1.0) {
         spec.species = {SpeciesSpec{D == 2 ? 100u : 60u, 0.5, 1.0, -1.0},
@@ -69,6 +75,7 @@ void restart_case(bool periodic, double restitution, double tc, double size_rati
     params.restitution = restitution;
     params.wall_restitution = restitution;
     params.tc = tc;
+    params.growth_rate = growth_rate;
     // T: about 20 collisions per particle (collision frequency ~6 (2D) / ~14 (3D) at T = 1;
     // fewer when the gas cools)
     const double T = D == 2 ? 3.5 : 1.5;
@@ -132,6 +139,13 @@ TEST(Restart, BitForBitTwoSizeClasses2D) {
 }
 TEST(Restart, BitForBitTwoSizeClasses3D) {
     restart_case<3>(false, 1.0, 0.0, 0.25);
+}
+
+TEST(Restart, BitForBitGrowingPeriodic3D) {
+    restart_case<3>(true, 1.0, 0.0, 1.0, 0.05);
+}
+TEST(Restart, BitForBitGrowingWalledMixture2D) {
+    restart_case<2>(false, 1.0, 0.0, 0.25, 0.05);
 }
 
 TEST(Restart, ManyRestartsInARow) {

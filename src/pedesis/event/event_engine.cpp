@@ -22,7 +22,19 @@ void validate(const EventParams& p) {
         throw InputError("event.wall_restitution must lie in [0, 1]");
     if (!(p.tc >= 0.0 && std::isfinite(p.tc)))
         throw InputError("event.tc must be a finite number >= 0");
+    if (!(p.growth_rate >= 0.0 && std::isfinite(p.growth_rate)))
+        throw InputError("event.growth_rate must be a finite number >= 0");
+    if (!(p.growth_packing_fraction >= 0.0 && p.growth_packing_fraction < 1.0))
+        throw InputError("event.growth_packing_fraction must lie in (0, 1)");
+    if (!(p.growth_max_pressure > 1.0))
+        throw InputError("event.growth_max_pressure must exceed 1 (the ideal gas)");
 }
+
+// Growth steps come at least this often in collisions per particle, so that the
+// pressure that ends growth near jamming is measured while time hardly advances.
+constexpr double growth_window_collisions = 4.0;
+// ... and whenever the kinetic energy has drifted this far from the value held.
+constexpr double growth_energy_tolerance = 0.05;
 
 std::string tag_name(std::uint32_t tag) {
     return "particle " + std::to_string(tag);
@@ -37,7 +49,7 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     if (p_.size() == 0) throw InputError("event engine: no particles (N = 0)");
     validate(params_);
 
-    double max_radius = 0.0, mean_diameter = 0.0;
+    double max_radius = 0.0;
     for (const auto& s : p_.species_table) {
         if (!(s.radius > 0.0 && std::isfinite(s.radius)))
             throw InputError("species '" + s.name + "': radius must be positive and finite");
@@ -52,32 +64,13 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
         if (!all_finite(p_.position[i]) || !all_finite(p_.velocity[i]))
             throw InputError(tag_name(p_.tag[i]) + ": position or velocity is not a finite number");
         if (inv_mass_[p_.species[i]] == 0.0) p_.velocity[i] = Vec<D>{}; // obstacles never move
-        mean_diameter += 2.0 * radius_[p_.species[i]];
     }
-    mean_diameter /= static_cast<double>(p_.size());
 
-    double min_periodic = never;
-    for (int a = 0; a < D; ++a) {
+    for (int a = 0; a < D; ++a)
         if (box_.length(a) < 2.0 * max_radius)
             throw InputError("box: length " + std::to_string(box_.length(a)) + " along axis " +
                              std::to_string(a) + " is smaller than one particle (diameter " +
                              std::to_string(2.0 * max_radius) + ")");
-        if (box_.periodic(a)) min_periodic = std::min(min_periodic, box_.length(a));
-    }
-    // The minimum image of a colliding pair must be unique over a whole list
-    // lifetime: L/2 > contact + 2 skin. Small periodic boxes get a smaller skin.
-    skin_ = params_.skin >= 0.0 ? params_.skin : default_skin(mean_diameter);
-    const double max_contact = 2.0 * max_radius;
-    if (std::isfinite(min_periodic)) {
-        const double room = 0.5 * min_periodic - max_contact;
-        if (room <= 0.0)
-            throw InputError("box: periodic length " + std::to_string(min_periodic) +
-                             " must exceed twice the largest contact distance (" +
-                             std::to_string(2.0 * max_contact) + ")");
-        skin_ = std::min(skin_, 0.45 * room);
-    }
-    if (!(skin_ > 0.0)) throw InputError("event.skin must be positive");
-    shell_ = 0.5 * skin_;
 
     for (std::size_t i = 0; i < p_.size(); ++i) {
         const double r = radius_[p_.species[i]];
@@ -100,9 +93,171 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
             kinetic_ += 0.5 * norm2(p_.velocity[i]) / inv_mass_[p_.species[i]];
     kinetic_exact_ = kinetic_;
 
+    radius_rate_.assign(radius_.size(), 0.0);
+    if (params_.growth_rate > 0.0) start_growth();
+    if (!choose_skin())
+        throw InputError("box: periodic length " + std::to_string(min_periodic_length()) +
+                         " must exceed twice the largest contact distance (" +
+                         std::to_string(4.0 * max_radius) + ")");
     make_grids();
     build_all_lists();
     check_no_overlap(1e-10);
+    setup();
+}
+
+template <int D> double EventEngine<D>::min_periodic_length() const {
+    double shortest = never;
+    for (int a = 0; a < D; ++a)
+        if (box_.periodic(a)) shortest = std::min(shortest, box_.length(a));
+    return shortest;
+}
+
+// The minimum image of a colliding pair must be unique over a whole list lifetime:
+// L/2 > contact + 2 skin, and with growth the contact may gain another skin/3 before
+// the next growth step. Small periodic boxes get a smaller skin; false if none fits.
+template <int D> bool EventEngine<D>::choose_skin() {
+    double max_radius = 0.0, mean_diameter = 0.0;
+    for (double r : radius_) max_radius = std::max(max_radius, r);
+    for (auto s : p_.species) mean_diameter += 2.0 * radius_[s];
+    mean_diameter /= static_cast<double>(p_.size());
+    skin_ = params_.skin >= 0.0 ? params_.skin : default_skin(mean_diameter);
+    const double room = 0.5 * min_periodic_length() - 2.0 * max_radius;
+    if (room <= 0.0) return false;
+    skin_ = std::min(skin_, (growth_.growing ? 0.4 : 0.45) * room);
+    if (!(skin_ > 0.0)) throw InputError("event.skin must be positive");
+    shell_ = growth_.growing ? skin_ / 3.0 : 0.5 * skin_;
+    return true;
+}
+
+template <int D> double EventEngine<D>::packing_fraction() const {
+    const double ball = D == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi;
+    double volume = 0.0;
+    for (auto s : p_.species) volume += ball * std::pow(radius_now(s), D);
+    return volume / box_.volume();
+}
+
+// Radii grow linearly, each in proportion to its size, so that the size ratios hold:
+// the largest diameter gains growth_rate per unit time.
+template <int D> void EventEngine<D>::start_growth() {
+    for (double im : inv_mass_)
+        if (im == 0.0)
+            throw InputError("event.growth_rate: every species must be mobile (a fixed obstacle "
+                             "cannot make room for growing neighbours)");
+    if (!(kinetic_ > 0.0))
+        throw InputError("event.growth_rate: the particles must move (zero kinetic energy)");
+    const double target = params_.growth_packing_fraction;
+    if (target > 0.0 && target <= packing_fraction())
+        throw InputError("event.growth_packing_fraction (" + std::to_string(target) +
+                         ") must exceed the starting packing fraction (" +
+                         std::to_string(packing_fraction()) + ")");
+    set_radius_rates();
+    radius_time_ = now_;
+    growth_kinetic_ = kinetic_;
+    growth_.growing = true;
+    window_time_ = now_;
+    window_collisions_ = counters_.pair_collisions;
+    window_virial_ = virial_trace();
+}
+
+template <int D> void EventEngine<D>::set_radius_rates() {
+    const double largest = *std::max_element(radius_.begin(), radius_.end());
+    for (std::size_t s = 0; s < radius_.size(); ++s)
+        radius_rate_[s] = 0.5 * params_.growth_rate * radius_[s] / largest;
+}
+
+template <int D> double EventEngine<D>::virial_trace() const {
+    double w = 0.0;
+    for (int a = 0; a < D; ++a) w += counters_.virial[a];
+    return w;
+}
+
+template <int D> bool EventEngine<D>::growth_due() const {
+    const double window = growth_window_collisions * static_cast<double>(p_.size());
+    return static_cast<double>(counters_.pair_collisions - window_collisions_) >= window ||
+           std::abs(kinetic_ - growth_kinetic_) > growth_energy_tolerance * growth_kinetic_;
+}
+
+// The next growth step: when the contact distances have used up the part of the skin
+// the lists leave them (see choose_skin), or when the target packing fraction is due.
+template <int D> void EventEngine<D>::schedule_growth_step() {
+    double contact_rate = 0.0, largest = 0.0, largest_rate = 0.0;
+    for (std::size_t s = 0; s < radius_.size(); ++s) {
+        contact_rate = std::max(contact_rate, 2.0 * radius_rate_[s]);
+        if (radius_[s] > largest) largest = radius_[s], largest_rate = radius_rate_[s];
+    }
+    next_growth_step_ = now_ + (skin_ - 2.0 * shell_) / contact_rate;
+    const double target = params_.growth_packing_fraction;
+    if (target > 0.0) {
+        const double scale = std::pow(target / packing_fraction(), 1.0 / D);
+        next_growth_step_ =
+            std::min(next_growth_step_, now_ + largest * (scale - 1.0) / largest_rate);
+    }
+}
+
+// A whole-system pass at now_: every particle brought to now_, the growth's end
+// tested, the kinetic energy rescaled to the value held and every event predicted
+// anew. A full step (the lists' allowance used up, or growth over) also moves the
+// radii's reference to now_ and rebuilds the lists; a thermostat step keeps both.
+template <int D> void EventEngine<D>::growth_step(bool full) {
+    for (std::uint32_t i = 0; i < p_.size(); ++i) {
+        advance(i);
+        box_.wrap(p_.position[i]);
+    }
+    ++growth_.steps;
+    const std::uint64_t collisions = counters_.pair_collisions - window_collisions_;
+    if (static_cast<double>(collisions) >=
+            growth_window_collisions * static_cast<double>(p_.size()) &&
+        now_ > window_time_) {
+        // Z = PV/(NkT) = 1 + W/(2K dt) with the collision virial W over the window
+        const double w = virial_trace() - window_virial_;
+        growth_.last_pressure = 1.0 + w / (2.0 * growth_kinetic_ * (now_ - window_time_));
+        window_time_ = now_;
+        window_collisions_ = counters_.pair_collisions;
+        window_virial_ = virial_trace();
+        if (growth_.last_pressure >= params_.growth_max_pressure) end_growth(GrowthEnd::pressure);
+    }
+    const double target = params_.growth_packing_fraction;
+    if (growth_.growing && target > 0.0 && packing_fraction() >= target * (1.0 - 1e-12))
+        end_growth(GrowthEnd::packing_fraction);
+
+    const double scale = std::sqrt(growth_kinetic_ / kinetic_);
+    for (auto& v : p_.velocity) v *= scale;
+    resum_kinetic_energy();
+
+    if (!full && growth_.growing) {
+        for (std::uint32_t i = 0; i < p_.size(); ++i) predict(i);
+        queue_.build(ev_time_);
+        return;
+    }
+    for (std::size_t s = 0; s < radius_.size(); ++s) {
+        radius_[s] = radius_now(s);
+        p_.species_table[s].radius = radius_[s];
+    }
+    radius_time_ = now_;
+    std::fill(radius_rate_.begin(), radius_rate_.end(), 0.0); // until growth resumes below
+    if (growth_.growing) set_radius_rates();
+    if (!choose_skin()) {
+        std::ostringstream m;
+        m << "event engine: at t = " << now_ << " the particles have grown to a contact distance "
+          << 2.0 * *std::max_element(radius_.begin(), radius_.end())
+          << ", half the periodic box length " << min_periodic_length()
+          << " or more; use a larger box (more particles)";
+        throw RunError(m.str());
+    }
+    relist();
+}
+
+// The radii stop at their current values: growth_step(), which calls this, then moves
+// their reference to now_ before any rate is cleared.
+template <int D> void EventEngine<D>::end_growth(GrowthEnd why) {
+    growth_.growing = false;
+    growth_.ended = why;
+    next_growth_step_ = never;
+}
+
+template <int D> void EventEngine<D>::relist() {
+    make_grids();
+    build_all_lists();
     setup();
 }
 
@@ -206,6 +361,7 @@ template <int D> void EventEngine<D>::setup() {
     ev_count_.assign(n, 0);
     for (std::uint32_t i = 0; i < n; ++i) predict(i);
     queue_.build(ev_time_);
+    if (growth_.growing) schedule_growth_step();
 }
 
 template <int D> void EventEngine<D>::add_neighbor(std::uint32_t i, std::uint32_t j) {
@@ -246,28 +402,48 @@ template <int D> void EventEngine<D>::advance(std::uint32_t i) {
 }
 
 template <int D> void EventEngine<D>::predict(std::uint32_t i) {
+    if (growth_.growing)
+        predict_with<true>(i);
+    else
+        predict_with<false>(i);
+}
+
+// The earliest event of particle i. While the radii grow (Growing), contact and wall
+// distances move; the other branch is the plain hot loop.
+template <int D> template <bool Growing> void EventEngine<D>::predict_with(std::uint32_t i) {
     const Vec<D> vi = p_.velocity[i];
     const Vec<D> xi = p_.position[i] + vi * (now_ - t_[i]);
-    const double ri = radius_[p_.species[i]];
+    const std::size_t si = p_.species[i];
+    const double ri = Growing ? radius_now(si) : radius_[si];
 
     double best = shell_exit_time(box_.minimum_image(xi - centre_[i]), vi, shell_);
     std::int32_t partner = shell_event;
     for (int a = 0; a < D; ++a) {
         if (box_.periodic(a)) continue;
-        const double tw = wall_collision_time(xi[a], vi[a], box_.lo(a), box_.hi(a), ri);
+        bool upper = vi[a] > 0.0;
+        const double tw = Growing
+                              ? growing_wall_collision_time(xi[a], vi[a], box_.lo(a), box_.hi(a),
+                                                            ri, radius_rate_[si], upper)
+                              : wall_collision_time(xi[a], vi[a], box_.lo(a), box_.hi(a), ri);
         if (tw < best) {
             best = tw;
-            partner = wall_event_base - (2 * a + (vi[a] > 0.0 ? 1 : 0));
+            partner = wall_event_base - (2 * a + (upper ? 1 : 0));
         }
     }
     const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
     const std::uint16_t n = n_nbr_[i];
     for (std::uint16_t k = 0; k < n; ++k) {
         const std::uint32_t j = list[k];
+        const std::size_t sj = p_.species[j];
         const Vec<D> xj = p_.position[j] + p_.velocity[j] * (now_ - t_[j]);
         const Vec<D> dr = box_.minimum_image(xi - xj);
         const Vec<D> dv = vi - p_.velocity[j];
-        const double tc = pair_collision_time_before(dr, dv, ri + radius_[p_.species[j]], best);
+        double tc;
+        if constexpr (Growing)
+            tc = growing_pair_collision_time(dr, dv, ri + radius_now(sj),
+                                             radius_rate_[si] + radius_rate_[sj]);
+        else
+            tc = pair_collision_time_before(dr, dv, ri + radius_[sj], best);
         if (tc < best) {
             best = tc;
             partner = static_cast<std::int32_t>(j);
@@ -291,8 +467,12 @@ template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_
             xi = 1.0;
         last_collision_[i] = last_collision_[j] = now_;
     }
-    const PairImpulse res = collide_pair(p_.velocity[i], p_.velocity[j], n,
-                                         inv_mass_[p_.species[i]], inv_mass_[p_.species[j]], xi);
+    const std::size_t si = p_.species[i], sj = p_.species[j];
+    const PairImpulse res =
+        growth_.growing
+            ? collide_growing_pair(p_.velocity[i], p_.velocity[j], n, inv_mass_[si], inv_mass_[sj],
+                                   xi, radius_rate_[si] + radius_rate_[sj])
+            : collide_pair(p_.velocity[i], p_.velocity[j], n, inv_mass_[si], inv_mass_[sj], xi);
     for (int a = 0; a < D; ++a) counters_.virial[a] += res.impulse * n[a] * dr[a];
     kinetic_ += res.energy_change;
     if (kinetic_ < 0.5 * kinetic_exact_) resum_kinetic_energy();
@@ -312,14 +492,22 @@ template <int D> void EventEngine<D>::process_wall(std::uint32_t i, std::int32_t
         last_collision_[i] = now_;
     }
     // pin the particle exactly onto the contact plane so rounding never lets it leak out
-    const double r = radius_[p_.species[i]];
+    const std::size_t s = p_.species[i];
+    const double r = radius_now(s);
     p_.position[i][a] = side ? box_.hi(a) - r : box_.lo(a) + r;
     const double before = p_.velocity[i][a];
-    const double m = 1.0 / inv_mass_[p_.species[i]];
-    counters_.wall_impulse[a][side] += collide_wall(p_.velocity[i][a], m, xi);
-    kinetic_ -= 0.5 * m * (1.0 - xi * xi) * before * before;
+    const double m = 1.0 / inv_mass_[s];
+    double lost = 0.5 * m * (1.0 - xi * xi) * before * before;
+    if (growth_.growing) {
+        counters_.wall_impulse[a][side] +=
+            collide_growing_wall(p_.velocity[i][a], m, xi, radius_rate_[s], side ? 1.0 : -1.0);
+        lost = 0.5 * m * (before * before - p_.velocity[i][a] * p_.velocity[i][a]);
+    } else {
+        counters_.wall_impulse[a][side] += collide_wall(p_.velocity[i][a], m, xi);
+    }
+    kinetic_ -= lost;
     if (kinetic_ < 0.5 * kinetic_exact_) resum_kinetic_energy();
-    counters_.energy_lost += 0.5 * m * (1.0 - xi * xi) * before * before;
+    counters_.energy_lost += lost;
     ++counters_.wall_collisions;
     ++count_[i];
 }
@@ -357,6 +545,12 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
     while (true) {
         const std::uint32_t i = queue_.top();
         const double te = queue_.top_time();
+        if (next_growth_step_ < te && next_growth_step_ <= limits.time) {
+            now_ = next_growth_step_;
+            growth_step(true);
+            if (!growth_.growing) return StopReason::grown;
+            continue;
+        }
         if (te == never) return StopReason::no_events; // nothing moves: time is meaningless
         if (te > limits.time) {
             if (std::isfinite(limits.time)) now_ = std::max(now_, limits.time);
@@ -394,6 +588,10 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
             predict(j);
             queue_.update(i, ev_time_[i]);
             queue_.update(j, ev_time_[j]);
+            if (growth_.growing && growth_due()) {
+                growth_step(false);
+                if (!growth_.growing) return StopReason::grown;
+            }
             if (counters_.pair_collisions >= limits.pair_collisions) return StopReason::collisions;
             if (kinetic_ <= limits.min_kinetic_energy) return StopReason::energy;
             continue;
@@ -404,6 +602,10 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
             process_wall(i, partner);
         predict(i);
         queue_.update(i, ev_time_[i]);
+        if (growth_.growing && partner != shell_event && growth_due()) {
+            growth_step(false);
+            if (!growth_.growing) return StopReason::grown;
+        }
         if (partner != shell_event && kinetic_ <= limits.min_kinetic_energy)
             return StopReason::energy;
     }
@@ -418,6 +620,7 @@ template <int D> Vec<D> EventEngine<D>::position_now(std::size_t i) const {
 template <int D> ParticleStore<D> EventEngine<D>::snapshot() const {
     ParticleStore<D> s = p_;
     for (std::size_t i = 0; i < s.size(); ++i) s.position[i] = position_now(i);
+    for (std::size_t k = 0; k < radius_.size(); ++k) s.species_table[k].radius = radius_now(k);
     return s;
 }
 
@@ -429,7 +632,7 @@ void EventEngine<D>::check_particle_overlap(std::uint32_t i, double rel_tol) con
         const std::uint32_t j = list[k];
         const Vec<D> xj = p_.position[j] + p_.velocity[j] * (now_ - t_[j]);
         const double d = norm(box_.minimum_image(xi - xj));
-        const double s = contact(i, j);
+        const double s = contact_now(i, j);
         if (d < s * (1.0 - rel_tol)) {
             std::ostringstream m;
             m << "overlap at t = " << now_ << ": " << tag_name(p_.tag[i]) << " and "
@@ -440,25 +643,39 @@ void EventEngine<D>::check_particle_overlap(std::uint32_t i, double rel_tol) con
 }
 
 template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
-    // Uses a fresh cell list on current positions: independent of the neighbour lists.
+    // Fresh cell lists on current positions, independent of the neighbour lists: one per
+    // size class with cells of the class's diameter, scanned as far as each pair of
+    // classes can touch (so small particles do not scan cells sized by the largest).
     const ParticleStore<D> s = snapshot();
-    double max_radius = 0.0;
-    for (double r : radius_) max_radius = std::max(max_radius, r);
-    CellList<D> cells(box_, 2.0 * max_radius);
-    cells.build(s.position);
+    const std::size_t classes = class_radius_.size();
+    std::vector<double> largest(classes, 0.0);
+    for (std::size_t k = 0; k < radius_.size(); ++k)
+        largest[class_of_[k]] = std::max(largest[class_of_[k]], radius_now(k));
+    std::vector<CellList<D>> cells;
+    for (std::size_t k = 0; k < classes; ++k) {
+        cells.emplace_back(box_, 2.0 * largest[k]);
+        cells.back().clear(s.size());
+    }
+    for (std::uint32_t i = s.size(); i-- > 0;)
+        cells[class_of_[s.species[i]]].insert(i, s.position[i]);
     for (std::uint32_t i = 0; i < s.size(); ++i) {
-        cells.for_each_near(s.position[i], [&](std::uint32_t j) {
-            if (j <= i) return;
-            const double d = norm(box_.minimum_image(s.position[i] - s.position[j]));
-            const double c = contact(i, j);
-            if (d < c * (1.0 - rel_tol)) {
-                std::ostringstream m;
-                m << tag_name(s.tag[i]) << " and " << tag_name(s.tag[j]) << " overlap: centres "
-                  << d << " apart, contact distance " << c << " (overlap " << c - d << ")";
-                if (now_ == 0.0 && counters_.pair_collisions == 0) throw InputError(m.str());
-                throw RunError("at t = " + std::to_string(now_) + ": " + m.str());
-            }
-        });
+        const std::size_t c = class_of_[s.species[i]];
+        for (std::size_t k = 0; k < classes; ++k) {
+            const int reach = cells[k].cells_to_reach(largest[c] + largest[k]);
+            cells[k].for_each_within(s.position[i], reach, [&](std::uint32_t j) {
+                if (j <= i) return;
+                const double d = norm(box_.minimum_image(s.position[i] - s.position[j]));
+                const double contact = contact_now(i, j);
+                if (d < contact * (1.0 - rel_tol)) {
+                    std::ostringstream m;
+                    m << tag_name(s.tag[i]) << " and " << tag_name(s.tag[j]) << " overlap: centres "
+                      << d << " apart, contact distance " << contact << " (overlap " << contact - d
+                      << ")";
+                    if (now_ == 0.0 && counters_.pair_collisions == 0) throw InputError(m.str());
+                    throw RunError("at t = " + std::to_string(now_) + ": " + m.str());
+                }
+            });
+        }
     }
 }
 
@@ -472,7 +689,8 @@ template <int D> std::size_t EventEngine<D>::memory_bytes() const {
 
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" in memory order
-constexpr std::uint32_t checkpoint_version = 2;                   // 2: one cell list per size class
+// 2: one cell list per size class; 3: growth state
+constexpr std::uint32_t checkpoint_version = 3;
 } // namespace
 
 template <int D> void EventEngine<D>::save(std::ostream& out) const {
@@ -486,6 +704,19 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, kinetic_exact_);
     put(out, stalled_events_);
     put(out, counters_);
+    put(out, params_.growth_rate);
+    put(out, radius_rate_);
+    put(out, radius_time_);
+    put(out, next_growth_step_);
+    put(out, growth_kinetic_);
+    put(out, window_time_);
+    put(out, window_collisions_);
+    put(out, window_virial_);
+    // field by field: the struct's padding bytes are not part of the state
+    put<std::uint8_t>(out, growth_.growing);
+    put(out, growth_.ended);
+    put(out, growth_.last_pressure);
+    put(out, growth_.steps);
     put(out, p_.position);
     put(out, p_.velocity);
     put(out, p_.tag);
@@ -517,11 +748,31 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     get(in, e.box_);
     get(in, e.now_);
     get(in, e.skin_);
-    e.shell_ = 0.5 * e.skin_;
     get(in, e.kinetic_);
     get(in, e.kinetic_exact_);
     get(in, e.stalled_events_);
     get(in, e.counters_);
+    get(in, e.params_.growth_rate); // the checkpoint's, whatever the config now says
+    if (!(e.params_.growth_rate >= 0.0 && std::isfinite(e.params_.growth_rate)))
+        throw InputError("checkpoint: corrupt growth rate");
+    get(in, e.radius_rate_);
+    get(in, e.radius_time_);
+    get(in, e.next_growth_step_);
+    get(in, e.growth_kinetic_);
+    get(in, e.window_time_);
+    get(in, e.window_collisions_);
+    get(in, e.window_virial_);
+    std::uint8_t growing = 0;
+    get(in, growing);
+    e.growth_.growing = growing != 0;
+    get(in, e.growth_.ended);
+    if (growing > 1 || static_cast<std::uint8_t>(e.growth_.ended) > 2)
+        throw InputError("checkpoint: corrupt growth state");
+    get(in, e.growth_.last_pressure);
+    get(in, e.growth_.steps);
+    if (e.radius_rate_.size() != e.radius_.size())
+        throw InputError("checkpoint: inconsistent array sizes (corrupt file)");
+    e.shell_ = e.growth_.growing ? e.skin_ / 3.0 : 0.5 * e.skin_;
     get(in, e.p_.position);
     get(in, e.p_.velocity);
     get(in, e.p_.tag);

@@ -9,7 +9,13 @@
 //   sigma_ij + skin of its own; a particle rebuilds its list (alone) when it has moved
 //   skin/2 from its centre, which keeps the lists exact without global rebuilds;
 // - a collision counter per particle invalidates events whose partner has collided
-//   since the prediction (no event is ever removed from the calendar).
+//   since the prediction (no event is ever removed from the calendar);
+// - optional Lubachevsky-Stillinger growth: every radius grows linearly in time (ratios
+//   kept), with the exact collision time and rule for growing spheres; the lists, the
+//   radii and a velocity rescaling (which holds the kinetic energy) are renewed at
+//   "growth steps" (growth_step()), a whole-system pass every time the contact distances
+//   have grown by a third of the skin, the kinetic energy has drifted 2%, or N
+//   collisions have passed.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_queue.hpp"
@@ -30,6 +36,23 @@ struct EventParams {
                                    // collision are elastic (0 disables)
     double skin = -1.0;            // neighbour-list skin; < 0 chooses one from the density
     bool check_overlaps = false;   // debug: verify no overlap after every collision
+    // Lubachevsky-Stillinger growth (0: none): the largest species' diameter grows by
+    // growth_rate per unit time, all others in proportion; it stops at the packing fraction
+    // growth_packing_fraction (0: no target) or when the reduced pressure PV/(NkT) over the
+    // last N collisions exceeds growth_max_pressure.
+    double growth_rate = 0.0;
+    double growth_packing_fraction = 0.0;
+    double growth_max_pressure = 1e3;
+};
+
+enum class GrowthEnd : std::uint8_t { none, packing_fraction, pressure };
+
+// State of Lubachevsky-Stillinger growth, for logs and summaries.
+struct GrowthStatus {
+    bool growing = false;
+    GrowthEnd ended = GrowthEnd::none;
+    double last_pressure = 0.0; // reduced pressure Z over the last window (0: none yet)
+    std::uint64_t steps = 0;    // growth steps (whole-system list rebuilds) so far
 };
 
 // Running totals since the engine was created (or restored).
@@ -43,7 +66,7 @@ template <int D> struct EventCounters {
     double energy_lost = 0.0;
 };
 
-enum class StopReason { time, collisions, energy, no_events };
+enum class StopReason { time, collisions, energy, no_events, grown };
 
 struct StopLimits {
     double time = std::numeric_limits<double>::infinity();
@@ -64,6 +87,9 @@ template <int D> class EventEngine {
     double kinetic_energy() const { return kinetic_; }
     std::size_t size() const { return p_.size(); }
     double skin() const { return skin_; }
+    // Volume fraction of the particles at the current time (radii grow with growth).
+    double packing_fraction() const;
+    const GrowthStatus& growth() const { return growth_; }
 
     // Position of particle i (storage index) at the current time, wrapped into the box.
     Vec<D> position_now(std::size_t i) const;
@@ -84,6 +110,7 @@ template <int D> class EventEngine {
 
   private:
     EventEngine() = default;
+    static constexpr double never_time = std::numeric_limits<double>::infinity();
     static constexpr std::int32_t no_event = -1;
     static constexpr std::int32_t shell_event = -2;
     static constexpr std::int32_t wall_event_base = -3; // -3 - (2 axis + side)
@@ -101,9 +128,28 @@ template <int D> class EventEngine {
     void rebuild_list(std::uint32_t i);
     void resum_kinetic_energy();
     void check_particle_overlap(std::uint32_t i, double rel_tol) const;
+    // Contact distance at the last growth step (the lists' reference; all times
+    // without growth) and now.
     double contact(std::uint32_t i, std::uint32_t j) const {
         return radius_[p_.species[i]] + radius_[p_.species[j]];
     }
+    double radius_now(std::size_t species) const {
+        return radius_[species] + radius_rate_[species] * (now_ - radius_time_);
+    }
+    double contact_now(std::uint32_t i, std::uint32_t j) const {
+        return radius_now(p_.species[i]) + radius_now(p_.species[j]);
+    }
+    void start_growth();
+    void growth_step(bool full);
+    void set_radius_rates();
+    void end_growth(GrowthEnd why);
+    bool choose_skin();
+    double min_periodic_length() const;
+    void relist();
+    bool growth_due() const;
+    void schedule_growth_step();
+    double virial_trace() const;
+    template <bool Growing> void predict_with(std::uint32_t i);
 
     ParticleStore<D> p_; // positions here are r_i at time t_i
     Box<D> box_;
@@ -114,8 +160,18 @@ template <int D> class EventEngine {
     double kinetic_ = 0.0;
     double kinetic_exact_ = 0.0; // kinetic_ when last summed from the velocities
 
-    std::vector<double> radius_;   // per species
+    std::vector<double> radius_;   // per species, at radius_time_
     std::vector<double> inv_mass_; // per species
+
+    // growth (radius_rate_ all zero and next_growth_step_ = never without it)
+    std::vector<double> radius_rate_; // per species, d radius / dt
+    double radius_time_ = 0.0;
+    double next_growth_step_ = never_time;
+    double growth_kinetic_ = 0.0; // the kinetic energy growth holds
+    double window_time_ = 0.0;    // pressure window: start time, collisions and virial
+    std::uint64_t window_collisions_ = 0;
+    double window_virial_ = 0.0;
+    GrowthStatus growth_;
 
     std::vector<double> t_;            // time of r_i
     std::vector<Vec<D>> centre_;       // neighbour-list centre

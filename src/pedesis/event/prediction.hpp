@@ -3,6 +3,7 @@
 // time from "now" until the event, or +infinity when there is none.
 #include "pedesis/core/vec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -41,6 +42,26 @@ inline double pair_collision_time_before(const Vec<D>& dr, const Vec<D>& dv, dou
     return t > 0.0 ? t : 0.0;
 }
 
+// Pair whose contact distance grows: sigma now, sigma_rate = d sigma / dt >= 0
+// (Lubachevsky-Stillinger). The gap closes when |dr + dv t| = sigma + sigma_rate t, a
+// quadratic a t^2 + 2 b t + c = 0 with a = dv^2 - rate^2, which has a root even for
+// receding pairs once the growth outruns them (a < 0). An overlap by a rounding error
+// counts as contact.
+template <int D>
+inline double growing_pair_collision_time(const Vec<D>& dr, const Vec<D>& dv, double sigma,
+                                          double sigma_rate) {
+    const double b = dot(dr, dv) - sigma * sigma_rate;
+    const double a = norm2(dv) - sigma_rate * sigma_rate;
+    const double c = std::max(norm2(dr) - sigma * sigma, 0.0);
+    if (b < 0.0) {
+        const double disc = b * b - a * c;
+        if (disc <= 0.0) return never;
+        return c / (-b + std::sqrt(disc));
+    }
+    if (a >= 0.0) return never;
+    return (-b - std::sqrt(b * b - a * c)) / a;
+}
+
 // Particle at coordinate x with velocity v between walls at lo and hi, radius rad.
 inline double wall_collision_time(double x, double v, double lo, double hi, double rad) {
     double t;
@@ -51,6 +72,17 @@ inline double wall_collision_time(double x, double v, double lo, double hi, doub
     else
         return never;
     return t > 0.0 ? t : 0.0;
+}
+
+// As wall_collision_time for a radius growing at rad_rate: both walls may come
+// first. Sets `upper` to whether the wall hit is the one at hi.
+inline double growing_wall_collision_time(double x, double v, double lo, double hi, double rad,
+                                          double rad_rate, bool& upper) {
+    double t_hi = never, t_lo = never;
+    if (v + rad_rate > 0.0) t_hi = std::max((hi - rad - x) / (v + rad_rate), 0.0);
+    if (v - rad_rate < 0.0) t_lo = std::max((lo + rad - x) / (v - rad_rate), 0.0);
+    upper = t_hi < t_lo;
+    return upper ? t_hi : t_lo;
 }
 
 // Time at which a particle displaced d from its neighbour-list centre, moving with

@@ -179,11 +179,25 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
         if (ev->has("skin") && !(c.skin > 0))
             throw InputError(ev->where("skin") + ": must be positive");
         c.check_overlaps = ev->boolean("check_overlaps").value_or(false);
+        c.growth_rate = ev->number("growth_rate", 0.0);
+        if (!(c.growth_rate >= 0))
+            throw InputError(ev->where("growth_rate") + ": must be >= 0 (0: no growth)");
+        c.growth_packing_fraction = ev->number("growth_packing_fraction", 0.0);
+        if (ev->has("growth_packing_fraction") &&
+            !(c.growth_packing_fraction > 0 && c.growth_packing_fraction < 1))
+            throw InputError(ev->where("growth_packing_fraction") + ": must lie in (0, 1)");
+        c.growth_max_pressure = ev->number("growth_max_pressure", c.growth_max_pressure);
+        if (!(c.growth_max_pressure > 1))
+            throw InputError(ev->where("growth_max_pressure") +
+                             ": must exceed 1 (a reduced pressure PV/(NkT))");
+        for (const char* key : {"growth_packing_fraction", "growth_max_pressure"})
+            if (ev->has(key) && c.growth_rate == 0)
+                throw InputError(ev->where(key) + ": needs event.growth_rate > 0");
         ev->finish();
     }
 
     const std::string stops = stepped ? "time, steps, collisions_per_particle"
-                                      : "time, collisions_per_particle, energy_fraction";
+                                      : "time, collisions_per_particle, energy_fraction, grown";
     auto run = root.table("run");
     if (!run && c.scripted) return read_event_output(doc, root, c);
     if (!run)
@@ -198,6 +212,9 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
         if (run->has("steps")) c.stop_steps = read_count(*run, "steps", 0, true);
     } else {
         c.stop_energy_fraction = run->number("energy_fraction");
+        c.stop_when_grown = run->boolean("grown").value_or(false);
+        if (c.stop_when_grown && c.growth_rate == 0)
+            throw InputError(run->where("grown") + ": needs event.growth_rate > 0");
     }
     if (c.stop_time && !(*c.stop_time > 0))
         throw InputError(run->where("time") + ": must be positive");
@@ -206,7 +223,7 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
     if (c.stop_energy_fraction && !(*c.stop_energy_fraction > 0 && *c.stop_energy_fraction < 1))
         throw InputError(run->where("energy_fraction") + ": must lie in (0, 1)");
     if (!c.scripted && !c.stop_time && !c.stop_collisions_per_particle && !c.stop_energy_fraction &&
-        !c.stop_steps)
+        !c.stop_steps && !c.stop_when_grown)
         throw InputError(c.file + ": [run] needs at least one of " + stops);
     run->finish();
 

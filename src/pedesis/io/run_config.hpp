@@ -52,6 +52,9 @@ struct RunConfig {
     double tc = 0.0;
     double skin = -1.0;
     bool check_overlaps = false;
+    double growth_rate = 0.0; // Lubachevsky-Stillinger growth (see EventParams)
+    double growth_packing_fraction = 0.0;
+    double growth_max_pressure = 1e3;
 
     // [stepped] (dynamics = stepped): the time step is `dt` below, the other keys of [run]
     // and [output] are the event engine's, and [run] steps is a stop condition too
@@ -63,6 +66,7 @@ struct RunConfig {
     std::optional<double> stop_time;
     std::optional<double> stop_collisions_per_particle;
     std::optional<double> stop_energy_fraction;
+    bool stop_when_grown = false; // [run] grown = true: stop when growth ends
 
     // [output]
     double log_interval = 1.0;

@@ -14,6 +14,9 @@ inline EventParams event_params(const RunConfig& c) {
     p.tc = c.tc;
     p.skin = c.skin;
     p.check_overlaps = c.check_overlaps;
+    p.growth_rate = c.growth_rate;
+    p.growth_packing_fraction = c.growth_packing_fraction;
+    p.growth_max_pressure = c.growth_max_pressure;
     return p;
 }
 

@@ -61,7 +61,8 @@ template <int D> class EventRun {
                     .temperature();
             state_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
-        out_.open(",list_rebuilds");
+        growing_ = c_.growth_rate > 0;
+        out_.open(growing_ ? ",list_rebuilds,packing_fraction,growth_pressure" : ",list_rebuilds");
         const std::size_t n = engine_->size();
 
         StopLimits limits;
@@ -95,8 +96,10 @@ template <int D> class EventRun {
                 limits.time = std::min({next_log, next_snap, next_ckpt, t_end});
                 reason = engine_->run(limits);
                 const double t = engine_->time();
-                const bool stop = reason != StopReason::time || t >= t_end;
-                if (t >= next_log || stop) {
+                if (reason == StopReason::grown) announce_growth_end();
+                const bool stop = (reason != StopReason::time && reason != StopReason::grown) ||
+                                  (reason == StopReason::grown && c_.stop_when_grown) || t >= t_end;
+                if (t >= next_log || stop || reason == StopReason::grown) {
                     log_row();
                     next_log = next_multiple(t, li);
                 }
@@ -124,7 +127,11 @@ template <int D> class EventRun {
     void log_row() {
         const auto& e = *engine_;
         const LogRow row = out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters());
-        out_.append_log(row.csv + fmt::format(",{}\n", e.counters().list_rebuilds));
+        std::string extra = fmt::format(",{}", e.counters().list_rebuilds);
+        if (growing_)
+            extra +=
+                fmt::format(",{:.10g},{:.10g}", e.packing_fraction(), e.growth().last_pressure);
+        out_.append_log(row.csv + extra + "\n");
         progress(row.temperature, row.pressure, row.has_pressure);
     }
 
@@ -147,6 +154,17 @@ template <int D> class EventRun {
                                 T, has_pressure ? fmt::format("{:.5g}", P) : "-", rate);
     }
 
+    void announce_growth_end() {
+        const auto& g = engine_->growth();
+        console_ << fmt::format(
+            "pedesis: growth ended at t = {:.6g}: {} (packing fraction {:.6f}, reduced pressure "
+            "{:.4g})\n",
+            engine_->time(),
+            g.ended == GrowthEnd::pressure ? "reduced pressure reached event.growth_max_pressure"
+                                           : "reached event.growth_packing_fraction",
+            engine_->packing_fraction(), g.last_pressure);
+    }
+
     void frame() { out_.frame(engine_->snapshot(), engine_->box(), engine_->time()); }
 
     void finish(StopReason reason) {
@@ -164,8 +182,21 @@ template <int D> class EventRun {
         const char* why = reason == StopReason::time         ? "time"
                           : reason == StopReason::collisions ? "collisions_per_particle"
                           : reason == StopReason::energy     ? "energy_fraction"
+                          : reason == StopReason::grown      ? "grown"
                                                              : "no more events";
         j["stopped_by"] = why;
+        if (growing_) {
+            const auto& g = e.growth();
+            j["growth"] = {{"growing", g.growing},
+                           {"ended_by", g.ended == GrowthEnd::pressure ? "pressure"
+                                        : g.ended == GrowthEnd::packing_fraction
+                                            ? "packing_fraction"
+                                            : "not ended"},
+                           {"packing_fraction", e.packing_fraction()},
+                           {"last_reduced_pressure", g.last_pressure},
+                           {"steps", g.steps}};
+            j["packing_fraction"] = e.packing_fraction(); // the radii of this instant
+        }
         out_.write_summary(j);
         console_ << fmt::format(
             "pedesis: stopped by {} at t = {:.6g} after {} collisions ({:.3g} per particle)\n", why,
@@ -184,6 +215,7 @@ template <int D> class EventRun {
     std::chrono::steady_clock::time_point wall_start_;
     std::optional<std::chrono::steady_clock::time_point> last_progress_;
     std::uint64_t collisions_start_ = 0;
+    bool growing_ = false; // growth configured: log packing fraction and pressure
 };
 
 } // namespace

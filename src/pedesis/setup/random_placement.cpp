@@ -4,6 +4,7 @@
 #include "pedesis/spatial/cell_list.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace pedesis {
@@ -11,11 +12,19 @@ namespace pedesis {
 template <int D>
 void place_randomly(std::vector<Vec<D>>& pos, std::vector<double>& radii, const Box<D>& box,
                     const PlacementRequest<D>& req, std::uint64_t seed) {
-    double max_radius = req.radius;
-    for (double r : radii) max_radius = std::max(max_radius, r);
-    const double reach = std::max(2.0 * max_radius, req.min_distance);
-    CellList<D> cells(box, reach);
+    double max_radius = req.radius, min_radius = req.radius;
+    for (double r : radii) {
+        max_radius = std::max(max_radius, r);
+        min_radius = std::min(min_radius, r);
+    }
+    // Cells sized by the smallest particle (but no more cells than particles), scanned
+    // as far as this request's particles reach: a small particle placed among large
+    // ones then looks at cells near it, not at cells the size of the largest contact.
     const std::size_t total = pos.size() + req.count;
+    const double spacing = std::pow(box.volume() / static_cast<double>(total), 1.0 / D);
+    CellList<D> cells(box, std::max({2.0 * min_radius, req.min_distance, spacing}));
+    const int reach_cells =
+        cells.cells_to_reach(std::max(req.radius + max_radius, req.min_distance));
     cells.clear(total);
     for (std::size_t j = 0; j < pos.size(); ++j)
         cells.insert(static_cast<std::uint32_t>(j), pos[j]);
@@ -28,7 +37,7 @@ void place_randomly(std::vector<Vec<D>>& pos, std::vector<double>& radii, const 
             Vec<D> r;
             for (int a = 0; a < D; ++a) r[a] = rng.uniform(req.lo[a], req.hi[a]);
             bool free = true;
-            cells.for_each_near(r, [&](std::uint32_t j) {
+            cells.for_each_within(r, reach_cells, [&](std::uint32_t j) {
                 if (!free) return;
                 const double dmin = std::max(req.radius + radii[j], req.min_distance);
                 if (norm2(box.minimum_image(r - pos[j])) < dmin * dmin) free = false;
