@@ -24,7 +24,7 @@ from ._pedesis import Evolver, Gas, InputError, Plugin, RunError, System
 
 __all__ = [
     "System", "Evolver", "Dump", "Gas", "Plugin", "InputError", "RunError",
-    "HarmonicForce", "WcaForce", "SelfPropulsion", "PolarAlign", "BrownianIntegrator",
+    "HarmonicForce", "WcaForce", "LjForce", "SelfPropulsion", "PolarAlign", "BrownianIntegrator",
     "BrownianRotIntegrator", "LangevinIntegrator", "NVEIntegrator", "builder",
 ]
 
@@ -32,6 +32,7 @@ __all__ = [
 _CLASS_NAMES = {
     "harmonic": "HarmonicForce",
     "wca": "WcaForce",
+    "lj": "LjForce",
     "self_propulsion": "SelfPropulsion",
     "polar_align": "PolarAlign",
     "brownian": "BrownianIntegrator",

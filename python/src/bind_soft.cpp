@@ -346,7 +346,7 @@ whenever Python runs.
         .def(
             "add_force",
             [](PyEvolver& e, const PyPlugin& p) { add_term(e, p, PluginKind::force, "add_force"); },
-            py::arg("force"), "Registers a force (HarmonicForce, WcaForce, SelfPropulsion).")
+            py::arg("force"), "Registers a force (HarmonicForce, WcaForce, LjForce, SelfPropulsion).")
         .def(
             "add_torque",
             [](PyEvolver& e, const PyPlugin& p) {

@@ -122,6 +122,7 @@ def _hard_parameters(run):
 _SYMBOLS = {
     "harmonic": (("k", "k"), ("a", "a")),
     "wca": (("epsilon", "eps"), ("sigma", "sigma")),
+    "lj": (("epsilon", "eps"), ("sigma", "sigma"), ("cutoff", "r_c/sigma")),
     "self_propulsion": (("alpha", "alpha"),),
     "polar_align": (("J", "J"), ("a", "a")),
     "brownian": (("T", "T"), ("gamma", "gamma")),

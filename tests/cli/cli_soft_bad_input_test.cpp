@@ -78,7 +78,7 @@ TEST_F(SoftBadInput, ValidConfigRuns) {
 TEST_F(SoftBadInput, UnknownPluginNamesListTheKnownOnes) {
     expect_rejected(
         with("name = \"harmonic\"", "name = \"harmonik\""),
-        {"run.toml:13:", "unknown force 'harmonik'", "known: harmonic, wca, self_propulsion"});
+        {"run.toml:13:", "unknown force 'harmonik'", "known: harmonic, wca, lj, self_propulsion"});
     expect_rejected(with("name = \"polar_align\"", "name = \"nematic\""),
                     {"unknown torque 'nematic'", "known: polar_align"});
     expect_rejected(

@@ -56,6 +56,28 @@ TEST(PairPotentials, WcaForceIsMinusGradientAndVanishesAtCutoff) {
     EXPECT_NEAR(f, 0.0, 1e-4);
 }
 
+// Lennard-Jones (LAMMPS' lj/cut, not shifted): U(sigma) = 0, the minimum -eps at
+// 2^(1/6) sigma where the force vanishes, nothing beyond cutoff * sigma.
+TEST(PairPotentials, LennardJonesMinimumAndCutoff) {
+    const LjPair lj{1.5, 1.0, 2.5};
+    expect_force_is_minus_gradient(lj, 1.0, 2.5);
+    double f, u;
+    ASSERT_TRUE(lj.eval(1.0, 7.0, f, u)); // sigma given: the radii do not matter
+    EXPECT_NEAR(u, 0.0, 1e-15);
+    EXPECT_DOUBLE_EQ(f, 24.0 * 1.5);
+    const double rmin = std::pow(2.0, 1.0 / 6.0);
+    ASSERT_TRUE(lj.eval(rmin * rmin, 1.0, f, u));
+    EXPECT_NEAR(u, -1.5, 1e-14);
+    EXPECT_NEAR(f, 0.0, 1e-14);
+    ASSERT_TRUE(lj.eval(2.4999 * 2.4999, 1.0, f, u));
+    EXPECT_NEAR(u, 4.0 * 1.5 * (std::pow(2.4999, -12) - std::pow(2.4999, -6)), 1e-15);
+    // default sigma: the contact distance; default cutoff 2.5 sigma
+    const LjPair contact{1.0, -1.0};
+    EXPECT_DOUBLE_EQ(contact.max_range(2.0), 5.0);
+    ASSERT_TRUE(contact.eval(4.0, 2.0, f, u));
+    EXPECT_NEAR(u, 0.0, 1e-15);
+}
+
 template <int D> void check_newton_third_law() {
     auto s = test::random_soft_system<D>(D == 2 ? 400 : 600, 12.0, 1.0, 3);
     Evolver<D> e(s, 0.3);

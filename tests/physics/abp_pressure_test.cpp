@@ -49,6 +49,7 @@ TEST(PairVirial, IsMinusTheVolumeDerivativeOfTheEnergy) {
     check_virial<3>(HarmonicPair{10.0, 1.2}, 8.0);
     check_virial<2>(WcaPair{1.0, -1.0}, 18.0);
     check_virial<3>(WcaPair{1.0, 1.0}, 9.0);
+    check_virial<3>(LjPair{1.0, 1.0, 2.5}, 9.0);
 }
 
 // Free ABPs: <alpha n(t) . (r(t) - r(0))> = alpha v0 tau (1 - e^{-t/tau}), tau = 1/((d-1) D_r),

@@ -14,10 +14,12 @@
 // on thread count or storage order. A particle of infinite mass is a fixed obstacle.
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
+#include "pedesis/soft/batch_normals.hpp"
 #include "pedesis/soft/blow_up.hpp"
 #include "pedesis/soft/per_species.hpp"
 #include "pedesis/soft/plugins.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -98,26 +100,36 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         // critical section.
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
         Vec<D> bad_move{};
+        // Batches of particles: their normals are drawn together (batch_normals), the
+        // same numbers as one particle at a time, several at once.
+        constexpr int B = detail::noise_batch;
+        const std::int64_t batches = (n + B - 1) / B;
 #pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < n; ++i) {
-            const std::uint16_t k = sp[i];
-            Vec<D> v = vel[i] + kick[k] * force[i];
-            Vec<D> move = half_drift[k] * v;
-            v *= damp[k];
-            if (noisy) {
-                CounterRng rng(seed_, RngStream::thermostat, tag[i], step);
-                for (int a = 0; a < D; ++a) v[a] += noise[k] * rng.normal();
-            }
-            move += half_drift[k] * v;
-            if (!(norm2(move) <= max2)) {
+        for (std::int64_t b = 0; b < batches; ++b) {
+            const std::int64_t first = b * B;
+            const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
+            double z[B * D];
+            if (noisy)
+                detail::batch_normals<D>(seed_, RngStream::thermostat, tag + first, step, m, z);
+            for (int q = 0; q < m; ++q) {
+                const std::int64_t i = first + q;
+                const std::uint16_t k = sp[i];
+                Vec<D> v = vel[i] + kick[k] * force[i];
+                Vec<D> move = half_drift[k] * v;
+                v *= damp[k];
+                if (noisy)
+                    for (int a = 0; a < D; ++a) v[a] += noise[k] * z[q * D + a];
+                move += half_drift[k] * v;
+                if (!(norm2(move) <= max2)) {
 #pragma omp critical(pedesis_langevin_bad_move)
-                if (i < bad) {
-                    bad = i;
-                    bad_move = move;
+                    if (i < bad) {
+                        bad = i;
+                        bad_move = move;
+                    }
                 }
+                pos[i] += move;
+                vel[i] = v;
             }
-            pos[i] += move;
-            vel[i] = v;
         }
         if (bad != std::numeric_limits<std::int64_t>::max())
             detail::throw_bad_move(s, static_cast<std::size_t>(bad), bad_move, max_move, name());

@@ -103,10 +103,21 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
                              rsbuf, m);
                     }
                 const double rsum_uniform = 2.0 * rad_i;
-                for (int q = 0; q < m; ++q) {
-                    double f_over_r, energy;
-                    if (pair_.eval(r2buf[q], Uniform ? rsum_uniform : rsbuf[q], f_over_r, energy))
-                        for (int a = 0; a < D; ++a) f[a] += f_over_r * dbuf[q][a];
+                if constexpr (Uniform) {
+                    // Every packed pair lies within the one range: F/r for all of them in
+                    // a loop without branches (several pairs per SIMD instruction), then
+                    // summed in list order.
+                    double frbuf[chunk];
+                    for (int q = 0; q < m; ++q)
+                        frbuf[q] = pair_.force_over_r(r2buf[q], rsum_uniform);
+                    for (int q = 0; q < m; ++q)
+                        for (int a = 0; a < D; ++a) f[a] += frbuf[q] * dbuf[q][a];
+                } else {
+                    for (int q = 0; q < m; ++q) {
+                        double f_over_r, energy;
+                        if (pair_.eval(r2buf[q], rsbuf[q], f_over_r, energy))
+                            for (int a = 0; a < D; ++a) f[a] += f_over_r * dbuf[q][a];
+                    }
                 }
             }
             force[i] += f;

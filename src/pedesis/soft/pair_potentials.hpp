@@ -1,11 +1,20 @@
 #pragma once
-// Pair evaluators: tiny structs with their parameters and one function giving, for a
-// pair at squared distance r2 with radii summing to rsum, the force divided by r and
-// the energy. The pair loop (pair_loop.hpp) is written once for all of them; adding a
-// potential is one struct here and one line in the registry.
+// Pair evaluators: tiny structs with their parameters and two functions: eval gives,
+// for a pair at squared distance r2 with radii summing to rsum, whether it interacts,
+// the force divided by r and the energy; force_over_r gives the force alone, without a
+// branch, for pairs already known to lie in range (the pair loop's vectorisable part). The pair
+// loop (pair_loop.hpp) is written once for all of them; adding a potential is one struct here and
+// one line in the registry.
 #include <cmath>
 
 namespace pedesis {
+
+// Lennard-Jones F/r = 24 eps (2 (s/r)^12 - (s/r)^6) / r^2, shared by wca and lj.
+inline double lj_force_over_r(double epsilon, double s, double r2) {
+    const double x2 = s * s / r2;
+    const double x6 = x2 * x2 * x2;
+    return 24.0 * epsilon * (2.0 * x6 * x6 - x6) / r2;
+}
 
 // Harmonic repulsion of the ABP tutorial: F = k (a - r) r_hat for r <= a,
 // U = k (a - r)^2 / 2. With a <= 0 the range is the contact distance r_i + r_j.
@@ -15,12 +24,16 @@ struct HarmonicPair {
 
     double range(double rsum) const { return a > 0.0 ? a : rsum; }
     double max_range(double max_rsum) const { return range(max_rsum); }
+    // F/r for a pair inside the range (the pair loop filters by range first)
+    double force_over_r(double r2, double rsum) const {
+        const double r = std::sqrt(r2);
+        return k * (range(rsum) - r) / r;
+    }
     bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
         const double R = range(rsum);
         if (r2 >= R * R) return false;
-        const double r = std::sqrt(r2);
-        const double overlap = R - r;
-        f_over_r = k * overlap / r;
+        const double overlap = R - std::sqrt(r2);
+        f_over_r = force_over_r(r2, rsum);
         energy = 0.5 * k * overlap * overlap;
         return true;
     }
@@ -34,14 +47,43 @@ struct WcaPair {
 
     double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return std::pow(2.0, 1.0 / 6.0) * sig(max_rsum); }
+    double force_over_r(double r2, double rsum) const {
+        return lj_force_over_r(epsilon, sig(rsum), r2);
+    }
     bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
         const double s = sig(rsum);
         const double s2 = s * s;
         if (r2 >= std::pow(2.0, 1.0 / 3.0) * s2) return false;
         const double x2 = s2 / r2;
         const double x6 = x2 * x2 * x2;
-        f_over_r = 24.0 * epsilon * (2.0 * x6 * x6 - x6) / r2;
+        f_over_r = lj_force_over_r(epsilon, s, r2);
         energy = 4.0 * epsilon * (x6 * x6 - x6) + epsilon;
+        return true;
+    }
+};
+
+// Lennard-Jones cut at `cutoff` sigma (2.5 by default, as LAMMPS' in.lj) and not
+// shifted, as LAMMPS' lj/cut without pair_modify shift: the energy jumps by
+// U(r_c) ~ -0.016 eps at the cutoff, the force is continuous enough for NVE at in.lj's
+// dt. With sigma <= 0, sigma = r_i + r_j.
+struct LjPair {
+    double epsilon = 1.0;
+    double sigma = -1.0;
+    double cutoff = 2.5;
+
+    double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
+    double max_range(double max_rsum) const { return cutoff * sig(max_rsum); }
+    double force_over_r(double r2, double rsum) const {
+        return lj_force_over_r(epsilon, sig(rsum), r2);
+    }
+    bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
+        const double s = sig(rsum);
+        const double s2 = s * s;
+        if (r2 >= cutoff * cutoff * s2) return false;
+        const double x2 = s2 / r2;
+        const double x6 = x2 * x2 * x2;
+        f_over_r = lj_force_over_r(epsilon, s, r2);
+        energy = 4.0 * epsilon * (x6 * x6 - x6);
         return true;
     }
 };

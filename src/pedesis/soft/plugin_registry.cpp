@@ -38,6 +38,14 @@ const std::vector<PluginInfo>& plugin_catalogue() {
            "length scale; default: the contact distance r_i + r_j"}},
          "U = 4 eps [(sigma/r)^12 - (sigma/r)^6] + eps for r < 2^(1/6) sigma"},
         {PluginKind::force,
+         "lj",
+         {{"epsilon", required, ParamLimit::non_negative, shared, "energy scale"},
+          {"sigma", optional, ParamLimit::positive, shared,
+           "length scale; default: the contact distance r_i + r_j"},
+          {"cutoff", optional, ParamLimit::positive, shared,
+           "cutoff in units of sigma; default 2.5"}},
+         "U = 4 eps [(sigma/r)^12 - (sigma/r)^6] for r < cutoff sigma (not shifted)"},
+        {PluginKind::force,
          "self_propulsion",
          {{"alpha", required, ParamLimit::any, per_species, "active force magnitude"}},
          "F_i = alpha n_i"},
@@ -229,6 +237,10 @@ void add_plugin(Evolver<D>& e, const PluginSpec& spec, const std::vector<Species
     else if (n == "wca")
         e.add_force(std::make_unique<PairForce<D, WcaPair>>(
             n, WcaPair{uniform(spec, "epsilon", 0.0), uniform(spec, "sigma", -1.0)}));
+    else if (n == "lj")
+        e.add_force(std::make_unique<PairForce<D, LjPair>>(
+            n, LjPair{uniform(spec, "epsilon", 0.0), uniform(spec, "sigma", -1.0),
+                      uniform(spec, "cutoff", 2.5)}));
     else if (n == "self_propulsion")
         e.add_force(std::make_unique<SelfPropulsion<D>>(plugin_parameter(spec, "alpha", species)));
     else if (n == "polar_align")
