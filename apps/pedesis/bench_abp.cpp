@@ -227,7 +227,7 @@ template <int D> void run_bench(const BenchAbpOptions& o) {
                builds,
                builds ? static_cast<double>(o.steps) / static_cast<double>(builds)
                       : std::numeric_limits<double>::infinity(),
-               static_cast<double>(nl.neighbors().size()) / nd);
+               static_cast<double>(nl.entries()) / nd);
     const double state = static_cast<double>(state_bytes(s));
     const double list = static_cast<double>(nl.memory_bytes());
     fmt::print("state_bytes_per_particle: {:.1f}  neighbour_list_bytes_per_particle: {:.1f}  "

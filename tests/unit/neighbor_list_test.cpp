@@ -78,12 +78,12 @@ void check_against_brute_force(const Box<D>& box, const std::vector<Vec<D>>& pos
                  std::to_string(skin));
     const std::size_t n = pos.size();
     ASSERT_EQ(nl.size(), n);
-    ASSERT_EQ(nl.offsets().size(), n + 1);
-    EXPECT_EQ(nl.offsets()[0], 0u);
-    EXPECT_EQ(nl.offsets()[n], nl.neighbors().size());
     std::size_t total = 0;
-    for (std::uint32_t i = 0; i < n; ++i) total += nl.count(i);
-    EXPECT_EQ(total, nl.neighbors().size());
+    for (std::uint32_t i = 0; i < n; ++i) {
+        total += nl.count(i);
+        EXPECT_EQ(nl.end(i) - nl.begin(i), static_cast<std::ptrdiff_t>(nl.count(i)));
+    }
+    EXPECT_EQ(total, nl.entries());
     const PairList expect = brute_pairs(box, pos, nl.r_list());
     EXPECT_GT(expect.size(), 0u) << "case too sparse to test anything";
     EXPECT_EQ(listed_pairs(nl), expect);
@@ -184,21 +184,20 @@ void check_thread_independence(const Box<D>& box, const std::vector<Vec<D>>& pos
     SCOPED_TRACE(test::describe_box(box) + " r_cut " + std::to_string(r_cut) + " skin " +
                  std::to_string(skin));
     const int saved = omp_get_max_threads();
-    std::vector<std::size_t> off1;
-    std::vector<std::uint32_t> nb1;
+    // (where the rows lie in storage may differ: each thread writes into its own chunks)
+    std::vector<std::vector<std::uint32_t>> rows1;
     for (int threads : {1, 2, 3}) {
         omp_set_num_threads(threads);
         NeighborList<D> nl(box, r_cut, skin);
         nl.build(pos);
-        std::vector<std::size_t> off(nl.offsets().begin(), nl.offsets().end());
-        std::vector<std::uint32_t> nb(nl.neighbors().begin(), nl.neighbors().end());
+        nl.build(pos); // the second build reuses the storage the first one sized
+        std::vector<std::vector<std::uint32_t>> rows(pos.size());
+        for (std::size_t i = 0; i < pos.size(); ++i) rows[i].assign(nl.begin(i), nl.end(i));
         if (threads == 1) {
-            off1 = off;
-            nb1 = nb;
-            EXPECT_GT(nb1.size(), pos.size());
+            rows1 = rows;
+            EXPECT_GT(nl.entries(), pos.size());
         } else {
-            EXPECT_EQ(off, off1) << threads << " threads";
-            EXPECT_EQ(nb, nb1) << threads << " threads";
+            EXPECT_EQ(rows, rows1) << threads << " threads";
         }
     }
     omp_set_num_threads(saved);
@@ -306,8 +305,7 @@ TEST(NeighborList, CountsBuildsAndReusesBuffers) {
     EXPECT_EQ(nl.builds(), 0u);
     nl.build(pos);
     EXPECT_EQ(nl.builds(), 1u);
-    const auto* nb = nl.neighbors().data();
-    const auto* off = nl.offsets().data();
+    const auto* nb = nl.storage();
     const std::size_t bytes = nl.memory_bytes();
     // the soft engine's budget is 200 bytes per particle in all (2D, density 0.4,
     // r_list 2.5); the list may take about a third of it
@@ -324,8 +322,7 @@ TEST(NeighborList, CountsBuildsAndReusesBuffers) {
         nl.build(pos);
     }
     EXPECT_EQ(nl.builds(), 4u);
-    EXPECT_EQ(nl.neighbors().data(), nb) << "rows reallocated on a rebuild";
-    EXPECT_EQ(nl.offsets().data(), off) << "offsets reallocated on a rebuild";
+    EXPECT_EQ(nl.storage(), nb) << "rows reallocated on a rebuild";
     EXPECT_EQ(nl.memory_bytes(), bytes);
 }
 

@@ -4,8 +4,11 @@
 
 #include <fmt/format.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -139,74 +142,100 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     const Vec<D>* const ref = ref_.data();
     using Range = std::array<std::uint32_t, 2>;
     constexpr int stencil_max = D == 2 ? 9 : 27;
-    // Calls row(i, ri, range, n_range) for every particle i, where the ranges of
-    // by_cell_ / ref_ hold the particles of the cells around i's, in stencil order. The
-    // row of i depends only on the positions, whichever thread handles its cell.
-    auto for_each_particle = [&](auto&& row) {
-    // dynamic: clustered (phase-separated) systems put most pairs in a few cells
-#pragma omp parallel for schedule(dynamic, 64) if (sn >= parallel_min)
-        for (std::int64_t c = 0; c < sc; ++c) {
-            const std::uint32_t cb = cell_start_[c], ce = cell_start_[c + 1];
-            if (cb == ce) continue;
-            std::array<Range, stencil_max> range;
-            int nr = 0;
-            cells_.for_each_neighbor_cell(static_cast<std::int32_t>(c), [&](std::int32_t nc) {
-                const std::uint32_t b = cell_start_[nc], e = cell_start_[nc + 1];
-                // Ranges that touch are concatenated (the cells between are empty):
-                // consecutive cells of a stencil row become one range, and one loop of
-                // ~8 candidates mispredicts its exit less often than three of ~3.
-                if (nr > 0 && range[nr - 1][1] == b)
-                    range[nr - 1][1] = e;
-                else if (b != e)
-                    range[nr++] = {b, e};
-            });
-            if (wraps(c))
-                for (std::uint32_t k = cb; k < ce; ++k)
-                    row(std::true_type{}, idx[k], ref[k], range.data(), nr);
-            else
-                for (std::uint32_t k = cb; k < ce; ++k)
-                    row(std::false_type{}, idx[k], ref[k], range.data(), nr);
-        }
-    };
 
-    offsets_.resize(n + 1);
-    offsets_[0] = 0;
-    for_each_particle(
-        [&](auto wrap, std::uint32_t i, const Vec<D>& ri, const Range* range, int nr) {
-            std::size_t count = 0;
-            for (int r = 0; r < nr; ++r)
-                for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k)
-                    count += (idx[k] != i) & near(wrap, ri, ref[k]);
-            offsets_[i + 1] = count;
-        });
-    // serial: O(N) adds, far cheaper than either pass
-    for (std::size_t i = 0; i < n; ++i) offsets_[i + 1] += offsets_[i];
-    entries_ = offsets_[n];
-    if (entries_ > capacity_) {
-        capacity_ = grow(entries_);
+    // One pass over the cells writes every row. Each thread claims chunks of the row
+    // storage (an atomic cursor) and appends the rows of its cells there; a row that
+    // outgrows the chunk moves to a fresh one. Rows therefore lie in an order that
+    // depends on the threads, but each row's content and order depend only on the
+    // positions (the cell scan), so every sum over a row is the same for any thread
+    // count. (An earlier build counted the rows in a first pass and filled them in a
+    // second, in particle order: twice the distance tests.)
+    rows_.resize(n);
+    std::vector<std::uint32_t>& lengths = cell_of_; // free after the binning above
+    while (true) {
+        std::atomic<std::size_t> claimed{0};
+        std::atomic<bool> overflow{false};
+        std::uint32_t* const out = neighbors_.get();
+        const std::size_t capacity = capacity_;
+#pragma omp parallel if (sn >= parallel_min)
+        {
+            std::size_t cur = 0, lim = 0; // this thread's chunk: [cur, lim)
+            std::uint32_t dummy = 0;
+            // where the next entry of a row that starts at `start` and has w entries goes
+            auto claim = [&](std::size_t start, std::size_t w) {
+                const std::size_t size = std::max<std::size_t>(chunk_entries, 2 * (w + 1));
+                const std::size_t at = claimed.fetch_add(size, std::memory_order_relaxed);
+                if (at + size > capacity) {
+                    overflow.store(true, std::memory_order_relaxed);
+                    cur = lim = 0; // write nothing more (the pass is repeated)
+                    return;
+                }
+                if (w > 0) std::copy_n(out + start, w, out + at);
+                cur = at;
+                lim = at + size;
+            };
+#pragma omp for schedule(dynamic, 64)
+            for (std::int64_t c = 0; c < sc; ++c) {
+                const std::uint32_t cb = cell_start_[c], ce = cell_start_[c + 1];
+                if (cb == ce) continue;
+                std::array<Range, stencil_max> range;
+                int nr = 0;
+                cells_.for_each_neighbor_cell(static_cast<std::int32_t>(c), [&](std::int32_t nc) {
+                    const std::uint32_t b = cell_start_[nc], e = cell_start_[nc + 1];
+                    // Ranges that touch are concatenated (the cells between are empty):
+                    // consecutive cells of a stencil row become one range, and one loop
+                    // of ~8 candidates mispredicts its exit less often than three of ~3.
+                    if (nr > 0 && range[nr - 1][1] == b)
+                        range[nr - 1][1] = e;
+                    else if (b != e)
+                        range[nr++] = {b, e};
+                });
+                auto row = [&](auto wrap, std::uint32_t i, const Vec<D>& ri) {
+                    // Branch-free: about a third of the candidates hit, at random. Every
+                    // candidate is stored and the cursor advances only on a hit; a store
+                    // past the chunk first moves the row to a new chunk (rare).
+                    std::size_t start = cur, w = 0;
+                    for (int r = 0; r < nr; ++r)
+                        for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k) {
+                            if (start + w >= lim) {
+                                // out of storage (the pass only counts now), or a new chunk
+                                if (!(lim == 0 && overflow.load(std::memory_order_relaxed))) {
+                                    claim(start, w);
+                                    start = cur;
+                                }
+                            }
+                            const std::uint32_t j = idx[k];
+                            *(start + w < lim ? out + start + w : &dummy) = j;
+                            w += (j != i) & near(wrap, ri, ref[k]);
+                        }
+                    lengths[i] = static_cast<std::uint32_t>(w);
+                    rows_[i] = (static_cast<std::uint64_t>(start) << length_bits) | w;
+                    cur = start + w;
+                };
+                if (wraps(c))
+                    for (std::uint32_t k = cb; k < ce; ++k) row(std::true_type{}, idx[k], ref[k]);
+                else
+                    for (std::uint32_t k = cb; k < ce; ++k) row(std::false_type{}, idx[k], ref[k]);
+            }
+        }
+        std::size_t total = 0, longest = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            total += lengths[i];
+            longest = std::max<std::size_t>(longest, lengths[i]);
+        }
+        if (longest >= (std::size_t{1} << length_bits))
+            throw RunError(fmt::format("neighbour list: a row of {} neighbours exceeds the limit "
+                                       "of {}; reduce the cutoff or the skin",
+                                       longest, (std::size_t{1} << length_bits) - 1));
+        entries_ = total;
+        if (!overflow.load()) break;
+        // Storage too small (the first build, or the system grew denser): room for every
+        // row plus each thread's partly used chunks, then the pass again.
+        capacity_ = grow(total + static_cast<std::size_t>(omp_get_max_threads() + 1) *
+                                     (chunk_entries + 2 * longest + 2));
         neighbors_.reset(); // free first so that old and new never coexist
         neighbors_ = std::make_unique_for_overwrite<std::uint32_t[]>(capacity_);
     }
-
-    std::uint32_t* const out = neighbors_.get();
-    for_each_particle(
-        [&](auto wrap, std::uint32_t i, const Vec<D>& ri, const Range* range, int nr) {
-            // Branch-free: about a third of the candidates hit, at random, so a branch would
-            // often mispredict. Every candidate is stored and the cursor advances only on a
-            // hit; once the row is full (the count pass said how long it is) the stores go
-            // to a dummy, never into the next particle's row.
-            std::uint32_t* const row = out + offsets_[i];
-            const std::size_t len = offsets_[i + 1] - offsets_[i];
-            std::uint32_t dummy;
-            std::size_t w = 0;
-            for (int r = 0; r < nr; ++r)
-                for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k) {
-                    const std::uint32_t j = idx[k];
-                    *(w < len ? row + w : &dummy) = j;
-                    w += (j != i) & near(wrap, ri, ref[k]);
-                }
-        });
-
     n_ = n;
     ++builds_;
 }
@@ -217,16 +246,14 @@ template <int D> void NeighborList<D>::reorder(const std::vector<std::uint32_t>&
             fmt::format("neighbour list: reorder of {} particles, list has {}", order.size(), n_));
     std::vector<std::uint32_t> new_index(n_);
     for (std::size_t i = 0; i < n_; ++i) new_index[order[i]] = static_cast<std::uint32_t>(i);
-    std::vector<std::size_t> offsets(n_ + 1, 0);
-    for (std::size_t i = 0; i < n_; ++i) offsets[i + 1] = offsets[i] + count(order[i]);
-    auto rows = std::make_unique_for_overwrite<std::uint32_t[]>(capacity_);
-    for (std::size_t i = 0; i < n_; ++i) {
-        std::uint32_t* w = rows.get() + offsets[i];
-        for (const std::uint32_t* j = begin(order[i]); j != end(order[i]); ++j)
-            *w++ = new_index[*j];
-    }
-    neighbors_ = std::move(rows);
-    offsets_ = std::move(offsets);
+    // Rows stay where they are; the particle each belongs to and the entries are renamed.
+    std::vector<std::uint64_t> rows(n_);
+    for (std::size_t i = 0; i < n_; ++i) rows[i] = rows_[order[i]];
+    rows_ = std::move(rows);
+    for (std::size_t i = 0; i < n_; ++i)
+        for (std::uint32_t* j = neighbors_.get() + (rows_[i] >> length_bits);
+             j != neighbors_.get() + (rows_[i] >> length_bits) + count(i); ++j)
+            *j = new_index[*j];
     // ref_ stays in cell order; only the particle each entry belongs to is renamed
     for (auto& k : by_cell_) k = new_index[k];
 }
@@ -248,7 +275,7 @@ template <int D> std::size_t NeighborList<D>::memory_bytes() const {
     return cells_.memory_bytes() +
            (cell_start_.capacity() + by_cell_.capacity() + cell_of_.capacity()) *
                sizeof(std::uint32_t) +
-           offsets_.capacity() * sizeof(std::size_t) + capacity_ * sizeof(std::uint32_t) +
+           rows_.capacity() * sizeof(std::uint64_t) + capacity_ * sizeof(std::uint32_t) +
            ref_.capacity() * sizeof(Vec<D>);
 }
 

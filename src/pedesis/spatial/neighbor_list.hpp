@@ -3,7 +3,8 @@
 // r_list = r_cut + skin, rebuilt only when some particle has moved more than skin/2,
 // so that no pair within r_cut can be missing in between.
 //
-// The list is FULL (each pair appears in both particles' rows) and stored in CSR form.
+// The list is FULL (each pair appears in both particles' rows); rows lie in one array,
+// each found by its start and length.
 // A half list would halve the memory but force loops would then scatter into j with
 // atomics or per-thread buffers; with a full list each particle sums its own row in a
 // fixed order, so force loops run in parallel without atomics and give bit-identical
@@ -56,13 +57,16 @@ template <int D> class NeighborList {
     // Particles in the last build; rows below are valid for i < size().
     std::size_t size() const { return n_; }
     std::uint32_t count(std::size_t i) const {
-        return static_cast<std::uint32_t>(offsets_[i + 1] - offsets_[i]);
+        return static_cast<std::uint32_t>(rows_[i] & ((std::uint64_t{1} << length_bits) - 1));
     }
-    const std::uint32_t* begin(std::size_t i) const { return neighbors_.get() + offsets_[i]; }
-    const std::uint32_t* end(std::size_t i) const { return neighbors_.get() + offsets_[i + 1]; }
-    // size() + 1 entries; row i is neighbors()[offsets()[i], offsets()[i + 1]).
-    std::span<const std::size_t> offsets() const { return {offsets_.data(), offsets_.size()}; }
-    std::span<const std::uint32_t> neighbors() const { return {neighbors_.get(), entries_}; }
+    const std::uint32_t* begin(std::size_t i) const {
+        return neighbors_.get() + (rows_[i] >> length_bits);
+    }
+    const std::uint32_t* end(std::size_t i) const { return begin(i) + count(i); }
+    // Neighbour entries in all rows (each pair twice).
+    std::size_t entries() const { return entries_; }
+    // The storage every row lies in (reused from build to build while it is large enough).
+    const std::uint32_t* storage() const { return neighbors_.get(); }
 
     // The positions of the last build, in storage order: building again from them gives
     // the same rows (a checkpoint restores the list this way).
@@ -92,9 +96,14 @@ template <int D> class NeighborList {
     CellList<D> cells_; // the grid and its stencils only: particles are binned below
     std::size_t n_ = 0;
     std::uint64_t builds_ = 0;
-    // 64-bit offsets: a dense 3D system with ~80 neighbours overflows 32 bits near
-    // 5e7 particles, which is a size people run.
-    std::vector<std::size_t> offsets_;
+    // Row i: where it starts in neighbors_ (the high 40 bits: rows may lie anywhere, in
+    // an order that depends on the threads) and its length (the low 24 bits), in one
+    // word as the CSR offsets took. 40 bits: a dense 3D system with ~80 neighbours
+    // passes 32 bits near 5e7 particles, which is a size people run.
+    static constexpr int length_bits = 24;
+    // Entries a thread claims at a time while it writes rows.
+    static constexpr std::size_t chunk_entries = 4096;
+    std::vector<std::uint64_t> rows_;
     // Raw storage with its own capacity: std::vector::resize would zero every entry on
     // growth (wasted writes) and grows by doubling (wasted memory).
     std::unique_ptr<std::uint32_t[]> neighbors_;
