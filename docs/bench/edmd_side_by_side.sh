@@ -91,11 +91,11 @@
 set -euo pipefail
 
 prog=edmd_side_by_side
-die() { echo "$prog: error: $*" >&2; exit 1; }
-note() { echo "$prog: $*" >&2; }
 
 script_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo_root=$(cd "$script_dir/../.." && pwd)
+# shellcheck source=bench_common.sh
+source "$script_dir/bench_common.sh"
 
 EDMD_SRC=${1:-${EDMD_SRC:-/work/peers/edmd}}
 N=${N:-32000}
@@ -112,8 +112,6 @@ SHOW_PATCH=${SHOW_PATCH:-0}
 RESULTS=${RESULTS:-}
 
 # ---------------------------------------------------------------- checks
-is_uint() { [[ $1 =~ ^[0-9]+$ ]]; }
-is_num() { [[ $1 =~ ^[0-9]+(\.[0-9]*)?([eE][-+]?[0-9]+)?$ || $1 =~ ^\.[0-9]+$ ]]; }
 is_uint "$N" && ((10#$N >= 4)) || die "N must be an integer >= 4 (got '$N')"
 is_uint "$PAIRS" && ((10#$PAIRS >= 1)) || die "PAIRS must be a positive integer (got '$PAIRS')"
 N=$((10#$N))
@@ -158,26 +156,8 @@ fi
 MAXTIME=$(awk -v w="$WARMUP" -v t="$TIME" 'BEGIN { printf "%.10g", w + t }')
 
 # ---------------------------------------------------------------- scratch
-created_scratch=0
-if [[ -z $SCRATCH ]]; then
-    SCRATCH=$(mktemp -d "${TMPDIR:-/tmp}/edmd_bench.XXXXXX")
-    created_scratch=1
-else
-    mkdir -p "$SCRATCH"
-fi
-case "$SCRATCH" in
-    "$repo_root" | "$repo_root"/*) die "SCRATCH must lie outside the repository ($repo_root)" ;;
-esac
-cleanup() {
-    if [[ $KEEP_SCRATCH == 1 ]]; then
-        note "scratch kept: $SCRATCH"
-    elif [[ $created_scratch == 1 ]]; then
-        rm -rf -- "$SCRATCH"
-    else
-        rm -rf -- "$SCRATCH/Single" "$SCRATCH/logs"
-    fi
-}
-trap cleanup EXIT
+scratch_entries=(Single logs)
+make_scratch edmd_bench
 
 peer="$SCRATCH/Single"
 rm -rf -- "$peer" "$SCRATCH/logs"
@@ -285,16 +265,7 @@ make -C "$peer" >"$logs/build.log" 2>&1 || { cat "$logs/build.log" >&2; die "pee
 peer_cc=$(grep -E '^gcc|^cc|mdSingle\.c -o md' "$logs/build.log" | head -1 || true)
 
 # ---------------------------------------------------------------- header
-cpu=$(awk -F': *' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
-ped_rev=$(git -C "$repo_root" rev-parse --short HEAD 2>/dev/null || echo unknown)
-ped_dirty=$(git -C "$repo_root" status --porcelain --untracked-files=no 2>/dev/null | grep -q . && echo " (+ local changes)" || true)
-ped_flags=""
-cache="$(dirname "$PEDESIS")/CMakeCache.txt"
-if [[ -f $cache ]]; then
-    bt=$(sed -n 's/^CMAKE_BUILD_TYPE:STRING=//p' "$cache")
-    fl=$(sed -n "s/^CMAKE_CXX_FLAGS_${bt^^}:STRING=//p" "$cache" 2>/dev/null || true)
-    ped_flags="$bt${fl:+ ($fl)}"
-fi
+describe_pedesis "$PEDESIS"
 echo "== EDMD (FSmallenburg/EDMD Single) vs pedesis bench event"
 echo "cpu:       ${cpu:-unknown}  ($(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg))"
 echo "peer:      $EDMD_SRC/Single, N $NPEER ($([[ $mixture == 1 ]] && echo 8 || echo 4)*${ncell}^3), thermostat $EDMD_THERMOSTAT"
@@ -308,7 +279,6 @@ echo
 # ---------------------------------------------------------------- runs
 # run_one label log timefile cmd...   -> prints "rate cpu_s maxrss_kb collisions"
 field() { awk -v k="$1" 'index($0, k) == 1 { sub(k, ""); gsub(/^[ \t]+/, ""); print; exit }' "$2"; }
-time_field() { awk -F': ' -v k="$1" '$1 ~ k { print $2; exit }' "$2"; }
 run_one() {
     local label=$1 log=$2 tf=$3
     shift 3
@@ -349,7 +319,6 @@ for ((i = 1; i <= PAIRS; i++)); do
 done
 
 # ---------------------------------------------------------------- summary
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) exit 1; print (NR % 2) ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1]) }'; }
 col() { awk -F'\t' -v c="$1" -v k="$2" 'NR > 1 && $2 == c { print $k }' "$tsv"; }
 ratios=$(awk -F'\t' 'NR > 1 { if ($2 == "peer") p[$1] = $4; else q[$1] = $4 } END { for (i in p) print q[i] / p[i] }' "$tsv")
 r_med=$(median <<<"$ratios")

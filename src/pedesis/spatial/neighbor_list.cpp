@@ -144,8 +144,9 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     constexpr int stencil_max = D == 2 ? 9 : 27;
 
     // One pass over the cells writes every row. Each thread claims chunks of the row
-    // storage (an atomic cursor) and appends the rows of its cells there; a row that
-    // outgrows the chunk moves to a fresh one. Rows therefore lie in an order that
+    // storage (an atomic cursor) and appends the rows of its cells there, each row
+    // starting where the chunk still has room for all its candidates (else in a fresh
+    // chunk), so that the scan stores without bound checks. Rows lie in an order that
     // depends on the threads, but each row's content and order depend only on the
     // positions (the cell scan), so every sum over a row is the same for any thread
     // count. (An earlier build counted the rows in a first pass and filled them in a
@@ -155,33 +156,40 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     while (true) {
         std::atomic<std::size_t> claimed{0};
         std::atomic<bool> overflow{false};
+        std::size_t max_candidates = 0; // the most candidates of any particle
         std::uint32_t* const out = neighbors_.get();
         const std::size_t capacity = capacity_;
 #pragma omp parallel if (sn >= parallel_min)
         {
-            std::size_t cur = 0, lim = 0; // this thread's chunk: [cur, lim)
-            std::uint32_t dummy = 0;
-            // where the next entry of a row that starts at `start` and has w entries goes
-            auto claim = [&](std::size_t start, std::size_t w) {
-                const std::size_t size = std::max<std::size_t>(chunk_entries, 2 * (w + 1));
-                const std::size_t at = claimed.fetch_add(size, std::memory_order_relaxed);
-                if (at + size > capacity) {
+            std::size_t cur = 0, lim = 0;    // this thread's chunk: [cur, lim)
+            std::vector<std::uint32_t> sink; // rows go here once storage ran out (counted only)
+            // Where a row of at most `cand` entries goes: the chunk if it has room, else a
+            // new chunk; nullptr once the storage is full (the pass is then repeated).
+            auto place_row = [&](std::size_t cand) -> std::uint32_t* {
+                if (cur + cand <= lim) return out + cur;
+                if (!overflow.load(std::memory_order_relaxed)) {
+                    const std::size_t size = std::max(chunk_entries, cand);
+                    const std::size_t at = claimed.fetch_add(size, std::memory_order_relaxed);
+                    if (at + size <= capacity) {
+                        cur = at;
+                        lim = at + size;
+                        return out + cur;
+                    }
                     overflow.store(true, std::memory_order_relaxed);
-                    cur = lim = 0; // write nothing more (the pass is repeated)
-                    return;
                 }
-                if (w > 0) std::copy_n(out + start, w, out + at);
-                cur = at;
-                lim = at + size;
+                if (sink.size() < cand) sink.resize(cand);
+                return nullptr;
             };
-#pragma omp for schedule(dynamic, 64)
+#pragma omp for schedule(dynamic, 64) reduction(max : max_candidates)
             for (std::int64_t c = 0; c < sc; ++c) {
                 const std::uint32_t cb = cell_start_[c], ce = cell_start_[c + 1];
                 if (cb == ce) continue;
                 std::array<Range, stencil_max> range;
                 int nr = 0;
+                std::size_t cand = 0; // candidates of each particle of this cell
                 cells_.for_each_neighbor_cell(static_cast<std::int32_t>(c), [&](std::int32_t nc) {
                     const std::uint32_t b = cell_start_[nc], e = cell_start_[nc + 1];
+                    cand += e - b;
                     // Ranges that touch are concatenated (the cells between are empty):
                     // consecutive cells of a stencil row become one range, and one loop
                     // of ~8 candidates mispredicts its exit less often than three of ~3.
@@ -190,27 +198,26 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     else if (b != e)
                         range[nr++] = {b, e};
                 });
+                max_candidates = std::max(max_candidates, cand);
                 auto row = [&](auto wrap, std::uint32_t i, const Vec<D>& ri) {
                     // Branch-free: about a third of the candidates hit, at random. Every
-                    // candidate is stored and the cursor advances only on a hit; a store
-                    // past the chunk first moves the row to a new chunk (rare).
-                    std::size_t start = cur, w = 0;
+                    // candidate is stored and the cursor advances only on a hit; the row
+                    // has room for all of them.
+                    std::uint32_t* dst = place_row(cand);
+                    const bool stored = dst != nullptr;
+                    if (!stored) dst = sink.data();
+                    std::size_t w = 0;
                     for (int r = 0; r < nr; ++r)
                         for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k) {
-                            if (start + w >= lim) {
-                                // out of storage (the pass only counts now), or a new chunk
-                                if (!(lim == 0 && overflow.load(std::memory_order_relaxed))) {
-                                    claim(start, w);
-                                    start = cur;
-                                }
-                            }
                             const std::uint32_t j = idx[k];
-                            *(start + w < lim ? out + start + w : &dummy) = j;
+                            dst[w] = j;
                             w += (j != i) & near(wrap, ri, ref[k]);
                         }
                     lengths[i] = static_cast<std::uint32_t>(w);
-                    rows_[i] = (static_cast<std::uint64_t>(start) << length_bits) | w;
-                    cur = start + w;
+                    if (stored) {
+                        rows_[i] = (static_cast<std::uint64_t>(cur) << length_bits) | w;
+                        cur += w;
+                    }
                 };
                 if (wraps(c))
                     for (std::uint32_t k = cb; k < ce; ++k) row(std::true_type{}, idx[k], ref[k]);
@@ -232,7 +239,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
         // Storage too small (the first build, or the system grew denser): room for every
         // row plus each thread's partly used chunks, then the pass again.
         capacity_ = grow(total + static_cast<std::size_t>(omp_get_max_threads() + 1) *
-                                     (chunk_entries + 2 * longest + 2));
+                                     (chunk_entries + max_candidates));
         neighbors_.reset(); // free first so that old and new never coexist
         neighbors_ = std::make_unique_for_overwrite<std::uint32_t[]>(capacity_);
     }
