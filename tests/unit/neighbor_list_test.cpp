@@ -128,6 +128,22 @@ TEST(NeighborList, MatchesBruteForce3D) {
         for (std::uint64_t seed : {21u, 22u}) check_against_brute_force(cases[k], 100 * k + seed);
 }
 
+// Dense systems with long cutoffs (more than 8 particles per r_list^D) use cells of
+// r_list / 2 and a stencil two cells deep: the same pairs.
+TEST(NeighborList, MatchesBruteForceWithHalfWidthCells) {
+    const std::vector<Case<3>> cases3 = {
+        {{{12.0, 12.0, 12.0}}, {true, true, true}, 2.5, 0.3}, // 8 cells per axis
+        {{{12.0, 12.0, 12.0}}, {false, false, false}, 2.5, 0.3},
+        {{{8.0, 12.0, 6.0}}, {true, false, true}, 2.5, 0.3}, // 5, 8 and 4 cells
+    };
+    for (std::size_t k = 0; k < cases3.size(); ++k) check_against_brute_force(cases3[k], 500 + k);
+    const std::vector<Case<2>> cases2 = {
+        {{{20.0, 20.0}}, {true, true}, 3.0, 0.5},
+        {{{20.0, 9.0}}, {true, false}, 3.0, 0.5},
+    };
+    for (std::size_t k = 0; k < cases2.size(); ++k) check_against_brute_force(cases2[k], 600 + k);
+}
+
 TEST(NeighborList, MatchesBruteForceClustered) {
     for (bool periodic : {true, false}) {
         const Box<2> box2(Vec<2>{{30.0, 24.0}}, {periodic, true});

@@ -94,6 +94,7 @@ template <int D> class NeighborList {
     Box<D> box_;
     double r_cut_, skin_, r_list_;
     CellList<D> cells_; // the grid and its stencils only: particles are binned below
+    int reach_ = 1;     // stencil half-width in cells: cells of r_list / reach_
     std::size_t n_ = 0;
     std::uint64_t builds_ = 0;
     // Row i: where it starts in neighbors_ (the high 40 bits: rows may lie anywhere, in
