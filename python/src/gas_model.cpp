@@ -49,7 +49,11 @@ template <int D, class Engine> class Gas : public GasModel {
         for (int a = 0; a < D; ++a) L.push_back(engine_->box().length(a));
         return L;
     }
-    const std::vector<Species>& species() const override { return table_; }
+    // the engine's table now: radii change while Lubachevsky-Stillinger growth runs
+    const std::vector<Species>& species() const override {
+        table_ = store().species_table;
+        return table_;
+    }
     std::uint64_t pair_collisions() const override { return engine_->counters().pair_collisions; }
     std::uint64_t wall_collisions() const override { return engine_->counters().wall_collisions; }
     double kinetic_energy() const override { return engine_->kinetic_energy(); }
@@ -72,7 +76,6 @@ template <int D, class Engine> class Gas : public GasModel {
     template <class Make> void start(const RunConfig& c, Make make) {
         const Box<D> box = build_box<D>(c);
         ParticleStore<D> p = build_particles<D>(c, box);
-        table_ = p.species_table;
         engine_ = make(std::move(p), box);
         last_time_ = engine_->time();
         last_T_ = temperature();
@@ -86,7 +89,7 @@ template <int D, class Engine> class Gas : public GasModel {
     virtual ParticleStore<D> store() const = 0;
 
     std::unique_ptr<Engine> engine_;
-    std::vector<Species> table_;
+    mutable std::vector<Species> table_; // the latest species(), kept for its reference
     EventCounters<D> last_counters_{};
     double last_time_ = 0.0, last_T_ = 0.0;
 };
@@ -121,6 +124,7 @@ template <int D> class EventGas final : public Gas<D, EventEngine<D>> {
             if (r == StopReason::time) return "time";
             if (r == StopReason::no_events) return "no_events";
             if (r == StopReason::energy) return "energy";
+            if (r == StopReason::grown) return "grown"; // run again to go on at these radii
             if (e.counters().pair_collisions >= target) return "collisions_per_particle";
         }
     }

@@ -117,3 +117,15 @@ temperature = 2.0
     assert g.kinetic_energy() == pytest.approx(2.0 * (2 * n - conserved) / 2, rel=1e-12)
     g.run(time=3.0)
     assert g.temperature() == pytest.approx(2.0, rel=1e-10)  # elastic: K and T stay
+
+
+def test_event_gas_growth_stops_at_the_packing_fraction():
+    """Lubachevsky-Stillinger growth from Python: run() says "grown" when the packing
+    fraction (disks of radius r: N pi r^2 / L^2) reaches its target, and goes on after."""
+    g = walled_gas("event", n=400, L=40.0,
+                   extra="[event]\ngrowth_rate = 0.2\ngrowth_packing_fraction = 0.5\n")
+    assert g.run(time=1000.0) == "grown"
+    r = g.radii
+    assert np.allclose(r, r[0])
+    assert 400 * np.pi * r[0] ** 2 / 40.0**2 == pytest.approx(0.5, rel=1e-9)
+    assert g.run(time=g.time + 1.0) == "time"
