@@ -646,7 +646,9 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
     // Fresh cell lists on current positions, independent of the neighbour lists: one per
     // size class with cells of the class's diameter, scanned as far as each pair of
     // classes can touch (so small particles do not scan cells sized by the largest).
-    const ParticleStore<D> s = snapshot();
+    // (positions only, not a whole snapshot: at the start this is the run's peak memory)
+    std::vector<Vec<D>> pos(p_.size());
+    for (std::size_t i = 0; i < p_.size(); ++i) pos[i] = position_now(i);
     const std::size_t classes = class_radius_.size();
     std::vector<double> largest(classes, 0.0);
     for (std::size_t k = 0; k < radius_.size(); ++k)
@@ -654,23 +656,22 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
     std::vector<CellList<D>> cells;
     for (std::size_t k = 0; k < classes; ++k) {
         cells.emplace_back(box_, 2.0 * largest[k]);
-        cells.back().clear(s.size());
+        cells.back().clear(pos.size());
     }
-    for (std::uint32_t i = s.size(); i-- > 0;)
-        cells[class_of_[s.species[i]]].insert(i, s.position[i]);
-    for (std::uint32_t i = 0; i < s.size(); ++i) {
-        const std::size_t c = class_of_[s.species[i]];
+    for (std::uint32_t i = pos.size(); i-- > 0;) cells[class_of_[p_.species[i]]].insert(i, pos[i]);
+    for (std::uint32_t i = 0; i < pos.size(); ++i) {
+        const std::size_t c = class_of_[p_.species[i]];
         for (std::size_t k = 0; k < classes; ++k) {
             const int reach = cells[k].cells_to_reach(largest[c] + largest[k]);
-            cells[k].for_each_within(s.position[i], reach, [&](std::uint32_t j) {
+            cells[k].for_each_within(pos[i], reach, [&](std::uint32_t j) {
                 if (j <= i) return;
-                const double d = norm(box_.minimum_image(s.position[i] - s.position[j]));
+                const double d = norm(box_.minimum_image(pos[i] - pos[j]));
                 const double contact = contact_now(i, j);
                 if (d < contact * (1.0 - rel_tol)) {
                     std::ostringstream m;
-                    m << tag_name(s.tag[i]) << " and " << tag_name(s.tag[j]) << " overlap: centres "
-                      << d << " apart, contact distance " << contact << " (overlap " << contact - d
-                      << ")";
+                    m << tag_name(p_.tag[i]) << " and " << tag_name(p_.tag[j])
+                      << " overlap: centres " << d << " apart, contact distance " << contact
+                      << " (overlap " << contact - d << ")";
                     if (now_ == 0.0 && counters_.pair_collisions == 0) throw InputError(m.str());
                     throw RunError("at t = " + std::to_string(now_) + ": " + m.str());
                 }
