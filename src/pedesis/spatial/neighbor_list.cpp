@@ -240,7 +240,9 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
             }
         }
         std::size_t total = 0, longest = 0;
-        for (std::size_t i = 0; i < n; ++i) {
+        // (integer sums and maxima: exact in any order)
+#pragma omp parallel for reduction(+ : total) reduction(max : longest) if (sn >= parallel_min)
+        for (std::int64_t i = 0; i < sn; ++i) {
             total += lengths[i];
             longest = std::max<std::size_t>(longest, lengths[i]);
         }
