@@ -47,10 +47,6 @@ EventEngine<3> growing_gas(std::size_t n, double eta, std::uint64_t seed, double
     return EventEngine<3>(gas.particles, gas.box, params);
 }
 
-double virial_trace(const EventCounters<3>& c) {
-    return c.virial[0] + c.virial[1] + c.virial[2];
-}
-
 } // namespace
 
 // Two unit-diameter spheres 4 apart close at speed 2 while the contact distance grows

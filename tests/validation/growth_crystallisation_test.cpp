@@ -16,10 +16,6 @@ using namespace pedesis::test;
 
 namespace {
 
-double virial_trace(const EventCounters<3>& c) {
-    return c.virial[0] + c.virial[1] + c.virial[2];
-}
-
 // Z = PV/(NkT) over [e.time(), until] from the collision virial (elastic: K constant).
 double reduced_pressure(EventEngine<3>& e, double until) {
     const double t0 = e.time(), w0 = virial_trace(e.counters());

@@ -156,7 +156,7 @@ template <int D> void EventEngine<D>::start_growth() {
     growth_.growing = true;
     window_time_ = now_;
     window_collisions_ = counters_.pair_collisions;
-    window_virial_ = virial_trace();
+    window_virial_ = virial_trace(counters_);
 }
 
 template <int D> void EventEngine<D>::set_radius_rates() {
@@ -165,15 +165,13 @@ template <int D> void EventEngine<D>::set_radius_rates() {
         radius_rate_[s] = 0.5 * params_.growth_rate * radius_[s] / largest;
 }
 
-template <int D> double EventEngine<D>::virial_trace() const {
-    double w = 0.0;
-    for (int a = 0; a < D; ++a) w += counters_.virial[a];
-    return w;
+template <int D> bool EventEngine<D>::pressure_window_full() const {
+    return static_cast<double>(counters_.pair_collisions - window_collisions_) >=
+           growth_window_collisions * static_cast<double>(p_.size());
 }
 
 template <int D> bool EventEngine<D>::growth_due() const {
-    const double window = growth_window_collisions * static_cast<double>(p_.size());
-    return static_cast<double>(counters_.pair_collisions - window_collisions_) >= window ||
+    return pressure_window_full() ||
            std::abs(kinetic_ - growth_kinetic_) > growth_energy_tolerance * growth_kinetic_;
 }
 
@@ -204,16 +202,13 @@ template <int D> void EventEngine<D>::growth_step(bool full) {
         box_.wrap(p_.position[i]);
     }
     ++growth_.steps;
-    const std::uint64_t collisions = counters_.pair_collisions - window_collisions_;
-    if (static_cast<double>(collisions) >=
-            growth_window_collisions * static_cast<double>(p_.size()) &&
-        now_ > window_time_) {
+    if (pressure_window_full() && now_ > window_time_) {
         // Z = PV/(NkT) = 1 + W/(2K dt) with the collision virial W over the window
-        const double w = virial_trace() - window_virial_;
+        const double w = virial_trace(counters_) - window_virial_;
         growth_.last_pressure = 1.0 + w / (2.0 * growth_kinetic_ * (now_ - window_time_));
         window_time_ = now_;
         window_collisions_ = counters_.pair_collisions;
-        window_virial_ = virial_trace();
+        window_virial_ = virial_trace(counters_);
         if (growth_.last_pressure >= params_.growth_max_pressure) end_growth(GrowthEnd::pressure);
     }
     const double target = params_.growth_packing_fraction;

@@ -66,6 +66,13 @@ template <int D> struct EventCounters {
     double energy_lost = 0.0;
 };
 
+// Sum over the axes of the collision virial: sum over collisions of J n . r_ij.
+template <int D> double virial_trace(const EventCounters<D>& c) {
+    double w = 0.0;
+    for (int a = 0; a < D; ++a) w += c.virial[a];
+    return w;
+}
+
 enum class StopReason { time, collisions, energy, no_events, grown };
 
 struct StopLimits {
@@ -147,8 +154,8 @@ template <int D> class EventEngine {
     double min_periodic_length() const;
     void relist();
     bool growth_due() const;
+    bool pressure_window_full() const;
     void schedule_growth_step();
-    double virial_trace() const;
     template <bool Growing> void predict_with(std::uint32_t i);
 
     ParticleStore<D> p_; // positions here are r_i at time t_i
