@@ -16,15 +16,6 @@ class CliGrowth : public ScratchDir {
     std::string config(const std::string& event, const std::string& run = "grown = true") {
         return small_config("", "length = 20.0", run) + "[event]\n" + event + "\n";
     }
-    void expect_rejected(const std::string& text, std::initializer_list<std::string> fragments) {
-        write("bad.toml", text);
-        const CliResult r = run_pedesis("run bad.toml --out out", dir);
-        EXPECT_EQ(r.exit_code, 2) << r.output;
-        for (const auto& f : fragments)
-            EXPECT_NE(r.output.find(f), std::string::npos)
-                << "missing '" << f << "' in: " << r.output;
-        EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
-    }
 };
 
 } // namespace

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 #include <sys/wait.h>
 
@@ -40,6 +41,20 @@ class ScratchDir : public ::testing::Test {
     }
     void TearDown() override {
         if (!HasFailure()) std::filesystem::remove_all(dir);
+    }
+    // Runs `config` as bad.toml and expects exit code 2 with every fragment in the message,
+    // no internal error, and no output file that looks complete.
+    void expect_rejected(const std::string& config, std::initializer_list<std::string> fragments) {
+        write("bad.toml", config);
+        const CliResult r = run_pedesis("run bad.toml --out out", dir);
+        EXPECT_EQ(r.exit_code, 2) << r.output;
+        for (const auto& f : fragments)
+            EXPECT_NE(r.output.find(f), std::string::npos)
+                << "missing '" << f << "' in: " << r.output;
+        EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+        EXPECT_FALSE(std::filesystem::exists(dir / "out" / "log.csv"));
+        EXPECT_FALSE(std::filesystem::exists(dir / "out" / "trajectory.xyz"));
+        EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
     }
     void write(const std::string& name, const std::string& text) {
         std::ofstream(dir / name) << text;

@@ -5,6 +5,7 @@
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/observe/theory.hpp"
 #include "support/gas_builder.hpp"
+#include "support/growing_gas.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,20 +32,6 @@ ParticleStore<3> spheres(const std::vector<Vec<3>>& r, const std::vector<Vec<3>>
 
 Box<3> walled_cube(double L) {
     return Box<3>(Vec<3>::filled(L), std::array<bool, 3>{false, false, false});
-}
-
-// n spheres of diameter 1 placed at random at packing fraction eta in a periodic cube,
-// growing at `rate` until `target` (0: none) or the reduced pressure 1000.
-EventEngine<3> growing_gas(std::size_t n, double eta, std::uint64_t seed, double rate,
-                           double target) {
-    auto spec = equal_gas<3>(n, eta, true, seed);
-    spec.placement = Placement::random;
-    auto gas = make_gas(spec);
-    EventParams params;
-    params.growth_rate = rate;
-    params.growth_packing_fraction = target;
-    params.growth_max_pressure = 1000.0;
-    return EventEngine<3>(gas.particles, gas.box, params);
 }
 
 } // namespace

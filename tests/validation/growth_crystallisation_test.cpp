@@ -7,7 +7,7 @@
 // 19.9, so the test asks Z < 15 over t = 600-800 after Z > 17 just after growth.
 // About 30 s: label `validation`.
 #include "pedesis/event/event_engine.hpp"
-#include "support/gas_builder.hpp"
+#include "support/growing_gas.hpp"
 
 #include <gtest/gtest.h>
 
@@ -28,13 +28,7 @@ double reduced_pressure(EventEngine<3>& e, double until) {
 } // namespace
 
 TEST(GrowthCrystallisation, SlowCompressionToPointFiftySixFreezes) {
-    auto spec = equal_gas<3>(2000, 0.08, true, 11);
-    spec.placement = Placement::random;
-    auto gas = make_gas(spec);
-    EventParams params;
-    params.growth_rate = 0.01;
-    params.growth_packing_fraction = 0.56;
-    EventEngine<3> e(gas.particles, gas.box, params);
+    auto e = growing_gas(2000, 0.08, 11, 0.01, 0.56);
     StopLimits lim;
     lim.time = 1000.0;
     ASSERT_EQ(e.run(lim), StopReason::grown);
