@@ -223,7 +223,7 @@ template <int D> void run_bench(const BenchAbpOptions& o) {
                "(cpu_particle_steps_per_second: {:.0f})\n",
                seconds, seconds / static_cast<double>(o.steps), cpu, particle_steps / cpu);
     fmt::print("list_builds: {} (one every {:.1f} steps; space-filling-curve sorts included)  "
-               "neighbours_per_particle: {:.2f}\n",
+               "list_entries_per_particle: {:.2f} (each pair once)\n",
                builds,
                builds ? static_cast<double>(o.steps) / static_cast<double>(builds)
                       : std::numeric_limits<double>::infinity(),

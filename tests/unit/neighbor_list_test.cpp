@@ -1,7 +1,8 @@
-// NeighborList: the rows are exactly the brute-force pairs within r_list (periodic,
-// walled and mixed boxes, axes with 1, 2 and 3 cells, elongated boxes, clusters,
-// positions just outside a periodic box), the full list
-// is symmetric, the rows do not depend on the thread count, needs_rebuild follows the
+// NeighborList: the rows hold exactly the brute-force pairs within r_list, each once
+// (periodic, walled and mixed boxes, axes with 1, 2 and 3 cells, elongated boxes,
+// clusters, positions just outside a periodic box), the colouring of the row sweep
+// never lets two blocks of one colour write the same particle, the rows do not depend
+// on the thread count, needs_rebuild follows the
 // skin/2 rule without mistaking a periodic wrap for motion, buffers are reused, and bad
 // parameters are reported by name.
 #include "pedesis/core/rng.hpp"
@@ -45,22 +46,56 @@ std::vector<Vec<D>> clustered_positions(const Box<D>& box, std::size_t n, double
     return pos;
 }
 
-// Ordered pairs (i, j), i != j, both ways round, sorted.
+// Pairs (i, j) with i < j, sorted.
 template <int D> PairList brute_pairs(const Box<D>& box, const std::vector<Vec<D>>& pos, double r) {
     PairList s;
     for (std::uint32_t i = 0; i < pos.size(); ++i)
-        for (std::uint32_t j = 0; j < pos.size(); ++j)
-            if (i != j && norm2(box.minimum_image(pos[i] - pos[j])) < r * r) s.push_back({i, j});
+        for (std::uint32_t j = i + 1; j < pos.size(); ++j)
+            if (norm2(box.minimum_image(pos[i] - pos[j])) < r * r) s.push_back({i, j});
     return s;
 }
 
-// Every entry of the list, duplicates kept (so a pair listed twice shows up).
+// Every entry of the list as (lower, higher) index, duplicates kept: a pair listed in
+// both rows, or twice in one, shows up twice; a particle listing itself shows up as (i, i).
 template <int D> PairList listed_pairs(const NeighborList<D>& nl) {
     PairList s;
     for (std::uint32_t i = 0; i < nl.size(); ++i)
-        for (const std::uint32_t* p = nl.begin(i); p != nl.end(i); ++p) s.push_back({i, *p});
+        for (const std::uint32_t* p = nl.begin(i); p != nl.end(i); ++p)
+            s.push_back({std::min(i, *p), std::max(i, *p)});
     std::sort(s.begin(), s.end());
     return s;
+}
+
+// The sweep's promise: the chunks hold every particle once, and within one colour the
+// particles a chunk's rows write (its own and their row entries) are written by no
+// other chunk of that colour.
+template <int D> void check_colouring(const NeighborList<D>& nl) {
+    std::vector<int> seen(nl.size(), 0);
+    for (int k = 0; k < nl.colours(); ++k) {
+        std::vector<std::int64_t> writer(nl.size(), -1);
+        const auto [first, last] = nl.chunks_of_colour(k);
+        for (std::size_t c = first; c < last; ++c)
+            for (std::uint32_t i : nl.chunk(c)) {
+                ++seen[i];
+                auto claim = [&](std::uint32_t p) {
+                    const auto me = static_cast<std::int64_t>(c);
+                    EXPECT_TRUE(writer[p] == -1 || writer[p] == me)
+                        << "particle " << p << " written by chunks " << writer[p] << " and " << c
+                        << " of colour " << k;
+                    writer[p] = me;
+                };
+                claim(i);
+                for (const std::uint32_t* p = nl.begin(i); p != nl.end(i); ++p) claim(*p);
+            }
+    }
+    for (std::size_t i = 0; i < nl.size(); ++i)
+        EXPECT_EQ(seen[i], 1) << "particle " << i << " in " << seen[i] << " chunks";
+    // for_each_chunk hands out the same chunks
+    std::vector<int> visits(nl.size(), 0);
+    nl.for_each_chunk([&](std::span<const std::uint32_t> rows) {
+        for (std::uint32_t i : rows) ++visits[i];
+    });
+    EXPECT_EQ(std::count(visits.begin(), visits.end(), 1), static_cast<std::ptrdiff_t>(nl.size()));
 }
 
 template <int D> struct Case {
@@ -87,6 +122,7 @@ void check_against_brute_force(const Box<D>& box, const std::vector<Vec<D>>& pos
     const PairList expect = brute_pairs(box, pos, nl.r_list());
     EXPECT_GT(expect.size(), 0u) << "case too sparse to test anything";
     EXPECT_EQ(listed_pairs(nl), expect);
+    check_colouring(nl);
 }
 
 template <int D> void check_against_brute_force(const Case<D>& c, std::uint64_t seed) {
@@ -169,28 +205,21 @@ TEST(NeighborList, MatchesBruteForceWithPositionsJustOutsideThePeriodicBox) {
     check_against_brute_force(box, pos, 2.0, 0.5);
 }
 
-TEST(NeighborList, FullListIsSymmetricWithoutSelfOrDuplicates) {
-    const Box<2> box(Vec<2>{{30.0, 17.0}}, {true, false});
-    const auto pos = test::random_positions(box, 900, 5, 6);
-    NeighborList<2> nl(box, 2.0, 0.5);
-    nl.build(pos);
-    std::vector<std::vector<std::uint32_t>> rows(nl.size());
-    for (std::uint32_t i = 0; i < nl.size(); ++i) {
-        rows[i].assign(nl.begin(i), nl.end(i));
-        std::sort(rows[i].begin(), rows[i].end());
-        EXPECT_EQ(std::adjacent_find(rows[i].begin(), rows[i].end()), rows[i].end())
-            << "particle " << i << " lists a neighbour twice";
-    }
-    std::size_t entries = 0;
-    for (std::uint32_t i = 0; i < nl.size(); ++i)
-        for (std::uint32_t j : rows[i]) {
-            ++entries;
-            EXPECT_NE(j, i) << "particle " << i << " lists itself";
-            EXPECT_TRUE(std::binary_search(rows[j].begin(), rows[j].end(), i))
-                << j << " in the row of " << i << " but not the reverse";
-        }
-    EXPECT_GT(entries, 0u);
-    EXPECT_EQ(entries % 2, 0u);
+// Colours: 3 per axis where an axis has 3 blocks or more (a periodic one then has a
+// multiple of 3), one per block below that. The block counts follow from the cells:
+// 20 / 2.5 = 8 cells, 6 on a periodic axis, 8 between walls; 5.5 / 2.5 = 2 periodic
+// cells make one block.
+TEST(NeighborList, ColoursFollowTheBlocks) {
+    auto colours = [](const Box<2>& box) {
+        NeighborList<2> nl(box, 2.0, 0.5);
+        return nl.colours();
+    };
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 20.0}}, {true, true})), 9);
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 20.0}}, {false, false})), 9);
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 5.5}}, {true, true})), 3);
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{5.0, 5.5}}, {false, true})), 2);
+    NeighborList<3> nl3(Box<3>(Vec<3>{{8.0, 8.0, 8.0}}, {true, true, true}), 1.2, 0.3);
+    EXPECT_EQ(nl3.colours(), 27);
 }
 
 // Rows identical (content and order) with 1, 2 and 3 threads, so force sums are too.

@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace pedesis {
 
@@ -24,11 +25,13 @@ template <int D> class PolarAlign final : public TorqueTerm<D> {
     std::string name() const override { return "polar_align"; }
     double range(const SoftState<D>&) const override { return a_; }
 
+    // Over the half list: n_i x n_j to i and n_j x n_i = -(n_i x n_j) to j, in the list's
+    // colour order (bit-identical for any thread count).
     void add_torques(SoftState<D>& s, const NeighborList<D>& nl) const override {
-        const auto n = static_cast<std::int64_t>(s.size());
         const double a2 = a_ * a_;
         const Vec<D>* pos = s.p.position.data();
         const Vec<D>* dir = s.director.data();
+        TorqueVec<D>* torque = s.torque.data();
         const Box<D>& box = s.box;
         // As in the pair loop: rows of particles this far from every periodic face need
         // no minimum image.
@@ -36,33 +39,35 @@ template <int D> class PolarAlign final : public TorqueTerm<D> {
         for (int a = 0; a < D; ++a)
             inner[a] = box.periodic(a) ? box.hi(a) - nl.image_free_margin()
                                        : std::numeric_limits<double>::infinity();
-#pragma omp parallel for schedule(static)
-        for (std::int64_t ii = 0; ii < n; ++ii) {
-            const auto i = static_cast<std::size_t>(ii);
-            const Vec<D> ri = pos[i];
-            bool interior = true;
-            for (int a = 0; a < D; ++a) interior = interior && std::abs(ri[a]) < inner[a];
-            // The torque is linear in n_j: n_i x (sum of the n_j in range), one cross
-            // product per particle. The sum is masked rather than branched on: whether a
-            // neighbour is in range is a coin toss the branch predictor loses (and the
-            // compiler turns a multiplication by 0 or 1 back into a branch).
-            Vec<D> sum{};
-            if (interior)
-                for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it)
-                    add_masked(sum, dir[*it], detail::squared_length(ri - pos[*it]) <= a2);
-            else
-                for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it)
-                    add_masked(sum, dir[*it],
-                               detail::squared_length(box.minimum_image(ri - pos[*it])) <= a2);
-            s.torque[i] += J_ * cross(s.director[i], sum);
-        }
+        const double J = J_;
+        nl.for_each_chunk([&](std::span<const std::uint32_t> rows) {
+            for (const std::uint32_t i : rows) {
+                const Vec<D> ri = pos[i];
+                const Vec<D> ni = dir[i];
+                bool interior = true;
+                for (int a = 0; a < D; ++a) interior = interior && std::abs(ri[a]) < inner[a];
+                // The torque on i is linear in n_j: n_i x (sum of the n_j in range), one cross
+                // product per row. Whether a neighbour is in range is a coin toss the branch
+                // predictor loses, so the neighbour's share is masked rather than branched
+                // on (the compiler turns a multiplication by 0 or 1 back into a branch).
+                Vec<D> sum{};
+                for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it) {
+                    const Vec<D> d = interior ? ri - pos[*it] : box.minimum_image(ri - pos[*it]);
+                    const bool in = detail::squared_length(d) <= a2;
+                    add_masked(sum, dir[*it], in);
+                    const TorqueVec<D> tj = J * cross(dir[*it], ni);
+                    add_masked(torque[*it], tj, in);
+                }
+                torque[i] += J * cross(ni, sum);
+            }
+        });
     }
 
   private:
     // sum += v if in, else sum += +0 (which leaves every sum but -0 unchanged)
-    static void add_masked(Vec<D>& sum, const Vec<D>& v, bool in) {
+    template <int K> static void add_masked(Vec<K>& sum, const Vec<K>& v, bool in) {
         const std::uint64_t mask = 0 - static_cast<std::uint64_t>(in);
-        for (int a = 0; a < D; ++a)
+        for (int a = 0; a < K; ++a)
             sum[a] += std::bit_cast<double>(std::bit_cast<std::uint64_t>(v[a]) & mask);
     }
 

@@ -19,13 +19,17 @@ template <int D> class CellList {
     static constexpr std::int32_t none = -1;
 
     CellList() = default;
-    CellList(const Box<D>& box, double min_cell) : box_(box) {
+    // With `periodic_multiple` m > 1, a periodic axis with at least m cells gets a
+    // multiple of m (wider cells): the soft engine's neighbour list colours blocks of
+    // cells with a period that must divide the count.
+    CellList(const Box<D>& box, double min_cell, int periodic_multiple = 1) : box_(box) {
         std::size_t total = 1;
         for (int a = 0; a < D; ++a) {
             int n = static_cast<int>(box.length(a) / min_cell);
             if (n < 1) n = 1;
             // cap the grid so that huge sparse boxes do not allocate absurd memory
             if (n > 4096) n = 4096;
+            if (box.periodic(a) && n >= periodic_multiple) n -= n % periodic_multiple;
             n_[a] = n;
             inv_w_[a] = n / box.length(a);
             stride_[a] = static_cast<std::int32_t>(total);

@@ -47,7 +47,81 @@ NeighborList<D>::NeighborList(const Box<D>& box, double r_cut, double skin)
                 "neighbour list: box too small for the cutoff: periodic axis {} has length {} "
                 "but the minimum image needs at least 2 r_list = {} (r_list = r_cut + skin = {})",
                 a, box.length(a), 2.0 * r_list_, r_list_));
-    cells_ = CellList<D>(box_, r_list_);
+    set_grid(1);
+}
+
+template <int D> void NeighborList<D>::set_grid(int reach) {
+    reach_ = reach;
+    cells_ = CellList<D>(box_, r_list_ / reach, 3 * reach);
+    std::array<int, D> along, width, blocks_along, colours_along;
+    std::size_t n_blocks = 1, n_colours = 1;
+    for (int a = 0; a < D; ++a) {
+        along[a] = cells_.cells_along(a);
+        // A periodic axis of 3 reach cells or more has a multiple of 3 reach (CellList's
+        // periodic_multiple), so its blocks come in threes round the wrap; a shorter one is
+        // one block, which every stencil on that axis stays within.
+        width[a] = box_.periodic(a) && along[a] < 3 * reach ? along[a] : reach;
+        blocks_along[a] = (along[a] + width[a] - 1) / width[a];
+        colours_along[a] = std::min(3, blocks_along[a]);
+        n_blocks *= static_cast<std::size_t>(blocks_along[a]);
+        n_colours *= static_cast<std::size_t>(colours_along[a]);
+    }
+    // (an odometer over D coordinates, axis 0 fastest; false once it wraps round)
+    auto next = [](std::array<int, D>& c, const std::array<int, D>& lo,
+                   const std::array<int, D>& hi, const std::array<int, D>& step) {
+        for (int a = 0; a < D; ++a) {
+            c[a] += step[a];
+            if (c[a] < hi[a]) return true;
+            c[a] = lo[a];
+        }
+        return false;
+    };
+    std::array<int, D> zero{}, one;
+    one.fill(1);
+    sweep_cells_.clear();
+    sweep_cells_.reserve(cells_.cell_count());
+    block_end_.clear();
+    block_end_.reserve(n_blocks);
+    colour_block_.assign(1, 0);
+    std::array<int, D> colour{};
+    do {
+        std::array<int, D> block = colour; // this colour's blocks: every colours_along-th
+        do {
+            std::array<int, D> lo, hi;
+            for (int a = 0; a < D; ++a) {
+                lo[a] = block[a] * width[a];
+                hi[a] = std::min(lo[a] + width[a], along[a]);
+            }
+            std::array<int, D> cell = lo;
+            do {
+                std::size_t id = 0;
+                for (int a = D - 1; a >= 0; --a)
+                    id =
+                        id * static_cast<std::size_t>(along[a]) + static_cast<std::size_t>(cell[a]);
+                sweep_cells_.push_back(static_cast<std::uint32_t>(id));
+            } while (next(cell, lo, hi, one));
+            block_end_.push_back(static_cast<std::uint32_t>(sweep_cells_.size()));
+        } while (next(block, colour, blocks_along, colours_along));
+        colour_block_.push_back(static_cast<std::uint32_t>(block_end_.size()));
+    } while (next(colour, zero, colours_along, one));
+}
+
+template <int D> void NeighborList<D>::make_sweep() {
+    sweep_.resize(by_cell_.size());
+    chunk_start_.assign(1, 0);
+    colour_chunk_.assign(1, 0);
+    std::size_t w = 0, b = 0, c = 0;
+    for (std::size_t k = 0; k + 1 < colour_block_.size(); ++k) {
+        for (; b < colour_block_[k + 1]; ++b) {
+            for (; c < block_end_[b]; ++c)
+                for (std::uint32_t q = cell_start_[sweep_cells_[c]];
+                     q < cell_start_[sweep_cells_[c] + 1]; ++q)
+                    sweep_[w++] = by_cell_[q];
+            if (w - chunk_start_.back() >= sweep_chunk) chunk_start_.push_back(w);
+        }
+        if (w != chunk_start_.back()) chunk_start_.push_back(w);
+        colour_chunk_.push_back(chunk_start_.size() - 1);
+    }
 }
 
 template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
@@ -98,10 +172,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     double cell_volume = 1.0;
     for (int a = 0; a < D; ++a) cell_volume *= r_list_;
     const int stencil_reach = static_cast<double>(n) / box_.volume() * cell_volume >= 8.0 ? 2 : 1;
-    if (stencil_reach != reach_) {
-        reach_ = stencil_reach;
-        cells_ = CellList<D>(box_, r_list_ / reach_);
-    }
+    if (stencil_reach != reach_) set_grid(stencil_reach);
     const std::size_t n_cells = cells_.cell_count();
     const auto sc = static_cast<std::int64_t>(n_cells);
     cell_of_.resize(n);
@@ -214,7 +285,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     });
                 max_candidates = std::max(max_candidates, cand);
                 auto row = [&](auto wrap, std::uint32_t i, const Vec<D>& ri) {
-                    // Branch-free: about a third of the candidates hit, at random. Every
+                    // Branch-free: about a sixth of the candidates hit, at random. Every
                     // candidate is stored and the cursor advances only on a hit; the row
                     // has room for all of them.
                     std::uint32_t* dst = place_row(cand);
@@ -225,7 +296,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                         for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k) {
                             const std::uint32_t j = idx[k];
                             dst[w] = j;
-                            w += (j != i) & near(wrap, ri, ref[k]);
+                            w += (j > i) & near(wrap, ri, ref[k]);
                         }
                     lengths[i] = static_cast<std::uint32_t>(w);
                     if (stored) {
@@ -259,6 +330,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
         neighbors_.reset(); // free first so that old and new never coexist
         neighbors_ = std::make_unique_for_overwrite<std::uint32_t[]>(capacity_);
     }
+    make_sweep();
     n_ = n;
     ++builds_;
 }
@@ -279,6 +351,7 @@ template <int D> void NeighborList<D>::reorder(const std::vector<std::uint32_t>&
             *j = new_index[*j];
     // ref_ stays in cell order; only the particle each entry belongs to is renamed
     for (auto& k : by_cell_) k = new_index[k];
+    for (auto& k : sweep_) k = new_index[k];
 }
 
 template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& pos) const {
@@ -299,7 +372,11 @@ template <int D> std::size_t NeighborList<D>::memory_bytes() const {
            (cell_start_.capacity() + by_cell_.capacity() + cell_of_.capacity()) *
                sizeof(std::uint32_t) +
            rows_.capacity() * sizeof(std::uint64_t) + capacity_ * sizeof(std::uint32_t) +
-           ref_.capacity() * sizeof(Vec<D>);
+           ref_.capacity() * sizeof(Vec<D>) +
+           (sweep_cells_.capacity() + block_end_.capacity() + colour_block_.capacity() +
+            sweep_.capacity()) *
+               sizeof(std::uint32_t) +
+           (chunk_start_.capacity() + colour_chunk_.capacity()) * sizeof(std::size_t);
 }
 
 template class NeighborList<2>;

@@ -3,16 +3,23 @@
 // r_list = r_cut + skin, rebuilt only when some particle has moved more than skin/2,
 // so that no pair within r_cut can be missing in between.
 //
-// The list is FULL (each pair appears in both particles' rows); rows lie in one array,
-// each found by its start and length.
-// A half list would halve the memory but force loops would then scatter into j with
-// atomics or per-thread buffers; with a full list each particle sums its own row in a
-// fixed order, so force loops run in parallel without atomics and give bit-identical
-// results whatever the thread count. The row order is the cell-list scan order, which
-// depends only on the positions, never on the threads.
+// The list is HALF: each pair appears once, in the row of its lower storage index, so
+// a force loop evaluates it once and adds it to both particles (Newton's third law).
+// Rows lie in one array, each found by its start and length.
+//
+// Force loops must then write into neighbours' sums, and must do so in an order that
+// does not depend on the threads (the project promises bit-identical results for any
+// thread count). for_each_row gives that order: the cells are grouped into blocks at
+// least r_list wide, the blocks coloured so that two blocks of one colour are never
+// adjacent, and the colours swept one after another. A row writes only into its own
+// block and the adjacent ones, so the blocks of one colour write disjoint particles
+// and run in parallel in any order, and each particle receives its contributions in
+// the fixed order (colour, then the position of the row in its one writing block).
+// The row order is the cell-list scan order, which depends only on the positions.
 #include "pedesis/core/box.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -63,10 +70,42 @@ template <int D> class NeighborList {
         return neighbors_.get() + (rows_[i] >> length_bits);
     }
     const std::uint32_t* end(std::size_t i) const { return begin(i) + count(i); }
-    // Neighbour entries in all rows (each pair twice).
-    std::size_t entries() const { return entries_; }
+    // Calls rows(span of particle indices) for chunks that together hold every particle
+    // i < size() once, in the colour order above: in parallel, and such that no two
+    // concurrent calls write the same particle when each writes only to its particles
+    // and the entries of their rows. Within a chunk the particles come in a fixed order.
+    // Call it from outside any parallel region.
+    template <class Rows> void for_each_chunk(Rows&& rows) const {
+        const auto colours = static_cast<int>(colour_chunk_.size()) - 1; // -1 before a build
+#pragma omp parallel
+        for (int k = 0; k < colours; ++k) {
+            // (the implicit barrier at the end of each loop separates the colours)
+#pragma omp for schedule(dynamic, 1)
+            for (std::int64_t c = static_cast<std::int64_t>(colour_chunk_[k]);
+                 c < static_cast<std::int64_t>(colour_chunk_[k + 1]); ++c)
+                rows(chunk(static_cast<std::size_t>(c)));
+        }
+    }
+
+    // The colouring, for tests: the chunks of colour k are [first, last).
+    int colours() const {
+        return static_cast<int>(colour_block_.size()) - 1;
+    }
+    std::array<std::size_t, 2> chunks_of_colour(int k) const {
+        return {colour_chunk_[k], colour_chunk_[k + 1]};
+    }
+    std::span<const std::uint32_t> chunk(std::size_t c) const {
+        return {sweep_.data() + chunk_start_[c], sweep_.data() + chunk_start_[c + 1]};
+    }
+
+    // Neighbour entries in all rows (each pair once).
+    std::size_t entries() const {
+        return entries_;
+    }
     // The storage every row lies in (reused from build to build while it is large enough).
-    const std::uint32_t* storage() const { return neighbors_.get(); }
+    const std::uint32_t* storage() const {
+        return neighbors_.get();
+    }
 
     // The positions of the last build, in storage order: building again from them gives
     // the same rows (a checkpoint restores the list this way).
@@ -81,13 +120,25 @@ template <int D> class NeighborList {
     // neighbours lie within r_list + skin, and positions are taken to lie within one
     // step's largest move of the box (the evolver wraps them after every step, and no
     // step moves a particle further than the skin, or r_cut without one).
-    double image_free_margin() const { return r_list_ + skin_ + (skin_ > 0.0 ? skin_ : r_cut_); }
+    double image_free_margin() const {
+        return r_list_ + skin_ + (skin_ > 0.0 ? skin_ : r_cut_);
+    }
 
-    double r_cut() const { return r_cut_; }
-    double skin() const { return skin_; }
-    double r_list() const { return r_list_; }
-    const Box<D>& box() const { return box_; }
-    std::uint64_t builds() const { return builds_; }
+    double r_cut() const {
+        return r_cut_;
+    }
+    double skin() const {
+        return skin_;
+    }
+    double r_list() const {
+        return r_list_;
+    }
+    const Box<D>& box() const {
+        return box_;
+    }
+    std::uint64_t builds() const {
+        return builds_;
+    }
     std::size_t memory_bytes() const;
 
   private:
@@ -95,6 +146,22 @@ template <int D> class NeighborList {
     double r_cut_, skin_, r_list_;
     CellList<D> cells_; // the grid and its stencils only: particles are binned below
     int reach_ = 1;     // stencil half-width in cells: cells of r_list / reach_
+    // The colouring of for_each_chunk, fixed with the grid: blocks of reach_ cells along
+    // each axis (the whole axis where a periodic axis has fewer than 3 reach_ cells,
+    // which would make a block its own neighbour), 3 colours per axis (fewer where an
+    // axis has fewer blocks). sweep_cells_ lists every cell colour by colour, block by
+    // block; block_end_[b] is where the b-th block of that order ends in it, and blocks
+    // [colour_block_[k], colour_block_[k + 1]) have colour k.
+    std::vector<std::uint32_t> sweep_cells_, block_end_, colour_block_;
+    void set_grid(int reach);
+    // Each build: the particles in that order (sweep_), cut at block boundaries into
+    // chunks of about sweep_chunk particles: chunk c is sweep_[chunk_start_[c] ..
+    // chunk_start_[c + 1]), and chunks [colour_chunk_[k], colour_chunk_[k + 1]) have
+    // colour k.
+    static constexpr std::size_t sweep_chunk = 64;
+    std::vector<std::uint32_t> sweep_;
+    std::vector<std::size_t> chunk_start_, colour_chunk_;
+    void make_sweep();
     std::size_t n_ = 0;
     std::uint64_t builds_ = 0;
     // Row i: where it starts in neighbors_ (the high 40 bits: rows may lie anywhere, in
