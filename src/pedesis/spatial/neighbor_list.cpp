@@ -66,6 +66,25 @@ template <int D> void NeighborList<D>::set_grid(int reach) {
         n_blocks *= static_cast<std::size_t>(blocks_along[a]);
         n_colours *= static_cast<std::size_t>(colours_along[a]);
     }
+    // The half stencil: the offsets whose last non-zero component is positive, one of
+    // each pair o, -o. Usable when every periodic axis has 2 reach + 1 cells or more, so
+    // that o and -o never name the same cell.
+    half_stencil_ = true;
+    for (int a = 0; a < D; ++a)
+        half_stencil_ = half_stencil_ && !(box_.periodic(a) && along[a] < 2 * reach + 1);
+    forward_.clear();
+    {
+        std::array<int, D> o;
+        o.fill(-reach);
+        while (true) {
+            int last = D - 1;
+            while (last >= 0 && o[last] == 0) --last;
+            if (last >= 0 && o[last] > 0) forward_.push_back(o);
+            int a = 0;
+            while (a < D && ++o[a] > reach) o[a++] = -reach;
+            if (a == D) break;
+        }
+    }
     // (an odometer over D coordinates, axis 0 fastest; false once it wraps round)
     auto next = [](std::array<int, D>& c, const std::array<int, D>& lo,
                    const std::array<int, D>& hi, const std::array<int, D>& step) {
@@ -270,21 +289,53 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                 if (cb == ce) continue;
                 std::array<Range, stencil_max> range;
                 int nr = 0;
-                std::size_t cand = 0; // candidates of each particle of this cell
-                cells_.for_each_cell_within(
-                    static_cast<std::int32_t>(c), reach_, [&](std::int32_t nc) {
-                        const std::uint32_t b = cell_start_[nc], e = cell_start_[nc + 1];
-                        cand += e - b;
-                        // Ranges that touch are concatenated (the cells between are empty):
-                        // consecutive cells of a stencil row become one range, and one loop
-                        // of ~8 candidates mispredicts its exit less often than three of ~3.
-                        if (nr > 0 && range[nr - 1][1] == b)
-                            range[nr - 1][1] = e;
-                        else if (b != e)
-                            range[nr++] = {b, e};
-                    });
+                std::size_t cand = 0; // candidates of each particle of this cell (at most)
+                auto add_cell = [&](std::size_t nc) {
+                    const std::uint32_t b = cell_start_[nc], e = cell_start_[nc + 1];
+                    cand += e - b;
+                    // Ranges that touch are concatenated (the cells between are empty):
+                    // consecutive cells of a stencil row become one range, and one loop
+                    // of ~8 candidates mispredicts its exit less often than three of ~3.
+                    if (nr > 0 && range[nr - 1][1] == b)
+                        range[nr - 1][1] = e;
+                    else if (b != e)
+                        range[nr++] = {b, e};
+                };
+                if (half_stencil_) {
+                    // the cell itself first (each particle scans only the ones after it),
+                    // then the forward cells
+                    add_cell(static_cast<std::size_t>(c));
+                    std::array<int, D> cc;
+                    std::int64_t rest = c;
+                    for (int a = 0; a < D; ++a) {
+                        cc[a] = static_cast<int>(rest % along[a]);
+                        rest /= along[a];
+                    }
+                    for (const auto& o : forward_) {
+                        std::size_t nc = 0;
+                        bool inside = true;
+                        for (int a = D - 1; a >= 0; --a) {
+                            int x = cc[a] + o[a];
+                            if (periodic[a])
+                                x += x < 0 ? along[a] : (x >= along[a] ? -along[a] : 0);
+                            else
+                                inside = inside && x >= 0 && x < along[a];
+                            nc = nc * static_cast<std::size_t>(along[a]) +
+                                 static_cast<std::size_t>(x);
+                        }
+                        if (inside) add_cell(nc);
+                    }
+                } else {
+                    cells_.for_each_cell_within(
+                        static_cast<std::int32_t>(c), reach_,
+                        [&](std::int32_t nc) { add_cell(static_cast<std::size_t>(nc)); });
+                }
                 max_candidates = std::max(max_candidates, cand);
-                auto row = [&](auto wrap, std::uint32_t i, const Vec<D>& ri) {
+                // With the half stencil a particle at k in its cell starts after itself
+                // and keeps every candidate in range; with the full one it keeps those of
+                // higher index.
+                const bool half = half_stencil_;
+                auto row = [&](auto wrap, std::uint32_t kk, std::uint32_t i, const Vec<D>& ri) {
                     // Branch-free: about a sixth of the candidates hit, at random. Every
                     // candidate is stored and the cursor advances only on a hit; the row
                     // has room for all of them.
@@ -293,10 +344,11 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     if (!stored) dst = sink.data();
                     std::size_t w = 0;
                     for (int r = 0; r < nr; ++r)
-                        for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k) {
+                        for (std::uint32_t k = r == 0 && half ? kk + 1 : range[r][0];
+                             k < range[r][1]; ++k) {
                             const std::uint32_t j = idx[k];
                             dst[w] = j;
-                            w += (j > i) & near(wrap, ri, ref[k]);
+                            w += (half | (j > i)) & near(wrap, ri, ref[k]);
                         }
                     lengths[i] = static_cast<std::uint32_t>(w);
                     if (stored) {
@@ -305,9 +357,11 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     }
                 };
                 if (wraps(c))
-                    for (std::uint32_t k = cb; k < ce; ++k) row(std::true_type{}, idx[k], ref[k]);
+                    for (std::uint32_t k = cb; k < ce; ++k)
+                        row(std::true_type{}, k, idx[k], ref[k]);
                 else
-                    for (std::uint32_t k = cb; k < ce; ++k) row(std::false_type{}, idx[k], ref[k]);
+                    for (std::uint32_t k = cb; k < ce; ++k)
+                        row(std::false_type{}, k, idx[k], ref[k]);
             }
         }
         std::size_t total = 0, longest = 0;

@@ -153,6 +153,12 @@ template <int D> class NeighborList {
     // block; block_end_[b] is where the b-th block of that order ends in it, and blocks
     // [colour_block_[k], colour_block_[k + 1]) have colour k.
     std::vector<std::uint32_t> sweep_cells_, block_end_, colour_block_;
+    // The build's stencil: with half_stencil_, a cell scans itself and the cells at the
+    // offsets forward_ (half of the others: a pair of cells is scanned from one side
+    // only); else (a periodic axis too short for that) the whole stencil, keeping the
+    // neighbours of higher index.
+    bool half_stencil_ = false;
+    std::vector<std::array<int, D>> forward_;
     void set_grid(int reach);
     // Each build: the particles in that order (sweep_), cut at block boundaries into
     // chunks of about sweep_chunk particles: chunk c is sweep_[chunk_start_[c] ..
