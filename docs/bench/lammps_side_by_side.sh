@@ -99,7 +99,7 @@
 #     both codes (LAMMPS `neigh_modify every 1 delay 0 check yes`), except lj3d where
 #     LAMMPS keeps in.lj's `neigh_modify delay 0 every 20 check no` (rebuild every 20
 #     steps, unchecked) unless LJ_LAMMPS_NEIGH=check; pedesis always checks. LAMMPS uses
-#     a half list (newton on), pedesis a full list; LAMMPS sorts atoms every 1000 steps
+#     a half list (newton on), pedesis too (a coloured sweep); LAMMPS sorts atoms every 1000 steps
 #     (default), pedesis every 500 (default sort_every).
 #   The script prints each code's final temperature, potential energy per particle,
 #   pressure and its virial part, medians over the pairs (abp: pressures other than the
