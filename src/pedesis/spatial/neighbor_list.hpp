@@ -45,9 +45,9 @@ template <int D> class NeighborList {
     // periodic axis shorter than 2 r_list (the minimum image would be ambiguous).
     NeighborList(const Box<D>& box, double r_cut, double skin);
 
-    // Positions must be wrapped into the box on periodic axes (SoftState keeps them so);
-    // a non-finite or unwrapped position throws RunError naming the particle and leaves
-    // the previous list as it was.
+    // Positions on periodic axes may lie outside the box by up to L/4 (the build bins
+    // wrapped copies); a non-finite position, or one further out, throws RunError naming
+    // the particle and leaves the previous list as it was.
     void build(const std::vector<Vec<D>>& pos);
 
     // True when any particle has moved more than skin/2 since the last build (minimum
