@@ -302,8 +302,9 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                 const std::uint32_t cb = cell_start_[c], ce = cell_start_[c + 1];
                 if (cb == ce) continue;
                 std::array<Range, stencil_max> range;
-                // what each range adds to ri - rj: the periodic image of its cell
-                std::array<Vec<D>, stencil_max> image;
+                // what each range adds to ri - rj: the periodic image of its cell (a plain
+                // array: an array of Vec would be zeroed, 3 kB, for every cell)
+                double image[stencil_max][D];
                 int nr = 0;
                 std::size_t cand = 0; // candidates of each particle of this cell (at most)
                 auto add_cell = [&](std::size_t nc, const Vec<D>& im) {
@@ -312,10 +313,13 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     // Ranges that touch are concatenated (the cells between are empty):
                     // consecutive cells of a stencil row become one range, and one loop
                     // of ~8 candidates mispredicts its exit less often than three of ~3.
-                    if (nr > 0 && range[nr - 1][1] == b && image[nr - 1] == im)
+                    bool same_image = nr > 0;
+                    for (int a = 0; a < D && same_image; ++a)
+                        same_image = image[nr - 1][a] == im[a];
+                    if (same_image && range[nr - 1][1] == b)
                         range[nr - 1][1] = e;
                     else if (b != e) {
-                        image[nr] = im;
+                        for (int a = 0; a < D; ++a) image[nr][a] = im[a];
                         range[nr++] = {b, e};
                     }
                 };
@@ -372,7 +376,8 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     if (!stored) dst = sink.data();
                     std::size_t w = 0;
                     for (int r = 0; r < nr; ++r) {
-                        const Vec<D> rs = ri + image[r];
+                        Vec<D> rs = ri;
+                        for (int a = 0; a < D; ++a) rs[a] += image[r][a];
                         for (std::uint32_t k = r == 0 && half ? kk + 1 : range[r][0];
                              k < range[r][1]; ++k) {
                             const std::uint32_t j = idx[k];
