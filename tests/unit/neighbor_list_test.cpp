@@ -205,21 +205,24 @@ TEST(NeighborList, MatchesBruteForceWithPositionsJustOutsideThePeriodicBox) {
     check_against_brute_force(box, pos, 2.0, 0.5);
 }
 
-// Colours: 3 per axis where an axis has 3 blocks or more (a periodic one then has a
-// multiple of 3), one per block below that. The block counts follow from the cells:
-// 20 / 2.5 = 8 cells, 6 on a periodic axis, 8 between walls; 5.5 / 2.5 = 2 periodic
-// cells make one block.
+// Colours: 2 per axis where an axis has 2 blocks or more, else 1. Blocks are 2 cells
+// wide (the whole of a periodic axis shorter than 4 cells), and a periodic axis of 4
+// cells or more has a multiple of 4. With r_list 2.5: 20 / 2.5 = 8 cells, 4 blocks;
+// 5.5 / 2.5 = 2 periodic cells, one block; 5.0 / 2.5 = 2 cells between walls, one
+// block; 12.5 / 2.5 = 5 cells between walls, blocks of 2, 2 and 1. In 3D,
+// 8 / 1.5 = 5 periodic cells become 4, 2 blocks.
 TEST(NeighborList, ColoursFollowTheBlocks) {
     auto colours = [](const Box<2>& box) {
         NeighborList<2> nl(box, 2.0, 0.5);
         return nl.colours();
     };
-    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 20.0}}, {true, true})), 9);
-    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 20.0}}, {false, false})), 9);
-    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 5.5}}, {true, true})), 3);
-    EXPECT_EQ(colours(Box<2>(Vec<2>{{5.0, 5.5}}, {false, true})), 2);
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 20.0}}, {true, true})), 4);
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 20.0}}, {false, false})), 4);
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{20.0, 5.5}}, {true, true})), 2);
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{5.0, 5.5}}, {false, true})), 1);
+    EXPECT_EQ(colours(Box<2>(Vec<2>{{12.5, 5.5}}, {false, true})), 2);
     NeighborList<3> nl3(Box<3>(Vec<3>{{8.0, 8.0, 8.0}}, {true, true, true}), 1.2, 0.3);
-    EXPECT_EQ(nl3.colours(), 27);
+    EXPECT_EQ(nl3.colours(), 8);
 }
 
 // Rows identical (content and order) with 1, 2 and 3 threads, so force sums are too.

@@ -52,17 +52,20 @@ NeighborList<D>::NeighborList(const Box<D>& box, double r_cut, double skin)
 
 template <int D> void NeighborList<D>::set_grid(int reach) {
     reach_ = reach;
-    cells_ = CellList<D>(box_, r_list_ / reach, 3 * reach);
+    cells_ = CellList<D>(box_, r_list_ / reach, 4 * reach);
     std::array<int, D> along, width, blocks_along, colours_along;
     std::size_t n_blocks = 1, n_colours = 1;
     for (int a = 0; a < D; ++a) {
         along[a] = cells_.cells_along(a);
-        // A periodic axis of 3 reach cells or more has a multiple of 3 reach (CellList's
-        // periodic_multiple), so its blocks come in threes round the wrap; a shorter one is
-        // one block, which every stencil on that axis stays within.
-        width[a] = box_.periodic(a) && along[a] < 3 * reach ? along[a] : reach;
+        // Blocks 2 reach cells wide: a row writes at most reach cells beyond its block,
+        // so two blocks with one block between them never write the same particle, and
+        // two colours per axis suffice (4 in 2D, 8 in 3D: each colour costs the sweep a
+        // barrier). A periodic axis of 4 reach cells or more has a multiple of 4 reach
+        // (CellList's periodic_multiple), so its blocks come in pairs round the wrap; a
+        // shorter one is one block, which every stencil on that axis stays within.
+        width[a] = box_.periodic(a) && along[a] < 4 * reach ? along[a] : 2 * reach;
         blocks_along[a] = (along[a] + width[a] - 1) / width[a];
-        colours_along[a] = std::min(3, blocks_along[a]);
+        colours_along[a] = std::min(2, blocks_along[a]);
         n_blocks *= static_cast<std::size_t>(blocks_along[a]);
         n_colours *= static_cast<std::size_t>(colours_along[a]);
     }
