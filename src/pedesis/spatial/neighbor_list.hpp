@@ -9,9 +9,9 @@
 //
 // Force loops must then write into neighbours' sums, and must do so in an order that
 // does not depend on the threads (the project promises bit-identical results for any
-// thread count). for_each_chunk gives that order: the cells are grouped into blocks at
-// least 2 r_list wide, the blocks coloured (two colours per axis) so that two blocks of
-// one colour are never adjacent, and the colours swept one after another. A row writes
+// thread count). for_each_chunk gives that order: the cells are grouped into blocks,
+// the blocks coloured (two or three colours per axis) so that two blocks of one colour
+// are at least 2 r_list apart, and the colours swept one after another. A row writes
 // only into its own block and at most r_list beyond it, so the blocks of one colour
 // write disjoint particles and run in parallel in any order, and each particle
 // receives its contributions in the fixed order (colour, then the position of the row
@@ -147,10 +147,10 @@ template <int D> class NeighborList {
     double r_cut_, skin_, r_list_;
     CellList<D> cells_; // the grid and its stencils only: particles are binned below
     int reach_ = 1;     // stencil half-width in cells: cells of r_list / reach_
-    // The colouring of for_each_chunk, fixed with the grid: blocks of 2 reach_ cells
-    // along each axis (the whole axis where a periodic axis has fewer than 4 reach_
-    // cells, which would make a block its own neighbour), 2 colours per axis (1 where an
-    // axis has one block). sweep_cells_ lists every cell colour by colour, block by
+    // The colouring of for_each_chunk, fixed with the grid (set_grid says how wide the
+    // blocks are and how many colours each axis has; the whole axis is one block where a
+    // periodic axis is too short for a full colour cycle, which would make a block its
+    // own neighbour). sweep_cells_ lists every cell colour by colour, block by
     // block; block_end_[b] is where the b-th block of that order ends in it, and blocks
     // [colour_block_[k], colour_block_[k + 1]) have colour k.
     std::vector<std::uint32_t> sweep_cells_, block_end_, colour_block_;
