@@ -63,7 +63,7 @@ template <int D> void NeighborList<D>::set_grid(int reach) {
     const int w = (2 * reach + k - 2) / (k - 1);
     cells_ = CellList<D>(box_, r_list_ / reach, k * w);
     std::array<int, D> along, width, blocks_along, colours_along;
-    std::size_t n_blocks = 1, n_colours = 1;
+    std::size_t n_blocks = 1;
     for (int a = 0; a < D; ++a) {
         along[a] = cells_.cells_along(a);
         // A periodic axis of k w cells or more has a multiple of k w (CellList's
@@ -73,7 +73,6 @@ template <int D> void NeighborList<D>::set_grid(int reach) {
         blocks_along[a] = (along[a] + width[a] - 1) / width[a];
         colours_along[a] = std::min(k, blocks_along[a]);
         n_blocks *= static_cast<std::size_t>(blocks_along[a]);
-        n_colours *= static_cast<std::size_t>(colours_along[a]);
     }
     // The half stencil: the offsets whose last non-zero component is positive, one of
     // each pair o, -o. Usable when every periodic axis has 2 reach + 1 cells or more, so
@@ -81,19 +80,6 @@ template <int D> void NeighborList<D>::set_grid(int reach) {
     half_stencil_ = true;
     for (int a = 0; a < D; ++a)
         half_stencil_ = half_stencil_ && !(box_.periodic(a) && along[a] < 2 * reach + 1);
-    forward_.clear();
-    {
-        std::array<int, D> o;
-        o.fill(-reach);
-        while (true) {
-            int last = D - 1;
-            while (last >= 0 && o[last] == 0) --last;
-            if (last >= 0 && o[last] > 0) forward_.push_back(o);
-            int a = 0;
-            while (a < D && ++o[a] > reach) o[a++] = -reach;
-            if (a == D) break;
-        }
-    }
     // (an odometer over D coordinates, axis 0 fastest; false once it wraps round)
     auto next = [](std::array<int, D>& c, const std::array<int, D>& lo,
                    const std::array<int, D>& hi, const std::array<int, D>& step) {
@@ -104,8 +90,17 @@ template <int D> void NeighborList<D>::set_grid(int reach) {
         }
         return false;
     };
-    std::array<int, D> zero{}, one;
+    std::array<int, D> zero{}, one, first, past;
     one.fill(1);
+    first.fill(-reach);
+    past.fill(reach + 1);
+    forward_.clear();
+    std::array<int, D> o = first;
+    do {
+        int last = D - 1;
+        while (last >= 0 && o[last] == 0) --last;
+        if (last >= 0 && o[last] > 0) forward_.push_back(o);
+    } while (next(o, first, past, one));
     sweep_cells_.clear();
     sweep_cells_.reserve(cells_.cell_count());
     block_end_.clear();
