@@ -53,9 +53,9 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
 
   private:
     // Candidates are filtered in chunks: those within the pair's largest range are
-    // packed (branch-free) into a buffer and only they are evaluated. Most of a row lies
-    // in the skin, at random, so testing each candidate with a branch mispredicted
-    // often; evaluating the packed ones keeps list order, so the sums are the same
+    // packed (branch-free) into a buffer and only they are evaluated. A third to a half
+    // of a row lies in the skin, at random, so testing each candidate with a branch
+    // mispredicted often; evaluating the packed ones keeps list order, so the sums are the same
     // whatever the thread count.
     static constexpr int chunk = 32;
 

@@ -184,8 +184,8 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     // order (serial, about 3 ns per particle), each cell's particles in increasing index
     // as the shared cell list's linked lists had them. Building those lists was serial
     // (about 8 ns per particle, floor and modulo included), which two threads felt; and
-    // chasing them (and the scattered positions they point to) for every stencil, in
-    // both passes below, cost more than the distance tests.
+    // chasing them (and the scattered positions they point to) for every stencil cost
+    // more than the distance tests.
     // Cells of r_list / 2 scanned two deep when a full cell would hold many particles
     // (long cutoffs in dense systems, like Lennard-Jones at 2.5 sigma): the 5^D stencil
     // covers (5/6)^D of the 3^D one's volume, 42% fewer candidates in 3D. With few
@@ -220,11 +220,11 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     cell_start_[0] = 0;
 
     const double rl2 = r_list_ * r_list_;
-    // Wrap is a std::bool_constant: false for the cells away from the periodic faces,
-    // whose stencils do not wrap (every position of ref_ lies in the box). There a raw
-    // difference within 2 cells is the minimum image whenever it is shorter than r_list
-    // (a longer one is not a pair either way), and skipping minimum_image takes a
-    // sizeable share off both passes.
+    // Wrap is a std::bool_constant, true only with the whole stencil (a periodic axis too
+    // short for the half one) for the cells next to a periodic face; with the half
+    // stencil each range carries its image (by_image below). Elsewhere a raw difference
+    // within 2 cells is the minimum image whenever it is shorter than r_list (a longer
+    // one is not a pair either way: every position of ref_ lies in the box).
     auto near = [&](auto wrap, const Vec<D>& ri, const Vec<D>& rj) {
         if constexpr (decltype(wrap)::value)
             return detail::squared_length(box_.minimum_image(ri - rj)) < rl2;
