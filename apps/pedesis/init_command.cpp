@@ -30,7 +30,7 @@ struct InitCommandOptions {
 
 template <int D> void write_random_init(const InitCommandOptions& o) {
     const SoftState<D> s = init_random<D>(o.random);
-    const std::string text = to_tutorial_json(s).dump() + "\n";
+    const std::string text = to_tutorial_json(s.frame()).dump() + "\n";
     write_file_atomically(o.output, [&](std::ostream& out) { out << text; });
     fmt::print("init random: wrote {} particles ({}D, box {}, phi {}, rcut {}, seed {}) to {}\n",
                s.size(), D, box_lengths_text(s.box), o.random.phi, o.random.rcut, o.random.seed,

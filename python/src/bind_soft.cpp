@@ -122,9 +122,9 @@ void random_init(double phi, double L, double rcut, const std::filesystem::path&
     require_parent_directory(outfile, "random_init");
     std::string text;
     if (dim == 2)
-        text = to_tutorial_json(init_random<2>(o)).dump();
+        text = to_tutorial_json(init_random<2>(o).frame()).dump();
     else if (dim == 3)
-        text = to_tutorial_json(init_random<3>(o)).dump();
+        text = to_tutorial_json(init_random<3>(o).frame()).dump();
     else
         throw InputError(fmt::format("random_init: dim must be 2 or 3, got {}", dim));
     write_file_atomically(outfile, [&](std::ostream& out) { out << text << "\n"; });
@@ -346,7 +346,8 @@ whenever Python runs.
         .def(
             "add_force",
             [](PyEvolver& e, const PyPlugin& p) { add_term(e, p, PluginKind::force, "add_force"); },
-            py::arg("force"), "Registers a force (HarmonicForce, WcaForce, LjForce, SelfPropulsion).")
+            py::arg("force"),
+            "Registers a force (HarmonicForce, WcaForce, LjForce, SelfPropulsion).")
         .def(
             "add_torque",
             [](PyEvolver& e, const PyPlugin& p) {

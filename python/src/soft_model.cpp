@@ -52,10 +52,10 @@ template <int D> class System final : public SystemModel {
     double polar_order() const override { return pedesis::polar_order(state); }
     double kinetic_energy() const override { return pedesis::kinetic_energy(state); }
     void write_vtp(const std::filesystem::path& path) const override {
-        pedesis::write_vtp(path, state);
+        pedesis::write_vtp(path, state.frame());
     }
     void write_json(const std::filesystem::path& path) const override {
-        const std::string text = to_tutorial_json(state).dump() + "\n";
+        const std::string text = to_tutorial_json(state.frame()).dump() + "\n";
         write_file_atomically(path, [&](std::ostream& out) { out << text; });
     }
 

@@ -320,11 +320,15 @@ def _last_gsd_frame(run, path):
             mass = np.asarray(frame.particles.mass, dtype=float)
             types = np.asarray(frame.particles.typeid, dtype=int)
             names = list(frame.particles.types)
+            logged_time = frame.log.get("time")
     except InputError:
         raise
     except Exception as e:  # gsd raises several kinds on a corrupt file
         raise InputError(f"{path}: cannot be read as GSD: {e}") from None
     dt = run.config.get("run", {}).get("dt")
-    time = step * float(dt) if dt is not None else float("nan")
+    if logged_time is not None:  # log/time, which pedesis writes in every frame
+        time = float(np.asarray(logged_time).reshape(-1)[0])
+    else:
+        time = step * float(dt) if dt is not None else float("nan")
     return Frame(time, types, mass, velocity, names,
                  f"{path.name} (last frame, step {step}; float32 velocities)")

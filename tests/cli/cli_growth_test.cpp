@@ -3,8 +3,12 @@
 // growth record; impossible growth settings exit 2 naming the key.
 #include "cli_support.hpp"
 
+#include "pedesis/io/gsd_reader.hpp"
+
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <numbers>
 #include <sstream>
 
 using namespace pedesis::test;
@@ -42,9 +46,13 @@ TEST_F(CliGrowth, GrowsToTheTargetAndStops) {
     const auto before = last.rfind(',', comma - 1);
     EXPECT_NEAR(std::stod(last.substr(before + 1, comma - before - 1)), 0.5, 1e-8) << last;
 
-    // the last frame carries the grown radius
-    const std::string xyz = read("out/trajectory.xyz");
-    EXPECT_NE(xyz.find("1.12837"), std::string::npos);
+    // the last frame of the trajectory (GSD, the default) carries the grown radius
+    const pedesis::GsdReader gsd(dir / "out" / "trajectory.gsd");
+    ASSERT_GE(gsd.frames(), 2u);
+    const pedesis::GsdFrame last_frame = gsd.frame(gsd.frames() - 1);
+    ASSERT_EQ(last_frame.diameter.size(), 50u);
+    // 50 disks of radius r fill half of 20 x 20 when r = sqrt(4 / pi); float32 in the file
+    EXPECT_NEAR(last_frame.diameter[0], 2.0 * std::sqrt(4.0 / std::numbers::pi), 1e-6);
 }
 
 TEST_F(CliGrowth, ImpossibleSettingsExit2NamingTheKey) {

@@ -43,6 +43,7 @@ time = 2.0
 log_interval = 0.5
 snapshot_interval = 0.5
 progress = false
+formats = ["xyz"]
 )";
 
 const std::string soft_config = R"(dimension = 2

@@ -16,7 +16,9 @@ std::string config_with_time(double t) {
            "[[species]]\nname = \"B\"\ncount = 100\nradius = 0.7\nmass = 3.0\n"
            "[event]\nrestitution = 0.95\ntc = 1e-6\n"
            "[run]\ntime = " +
-           std::to_string(t) + "\n[output]\nlog_interval = 0.5\nprogress = false\n";
+           std::to_string(t) +
+           "\n[output]\nlog_interval = 0.5\nprogress = false\nformats = [\"gsd\", \"xyz\", "
+           "\"json\"]\n";
 }
 
 TEST_F(CliRun, RestartContinuesBitForBit) {
@@ -52,8 +54,9 @@ TEST_F(CliRun, OutputsParse) {
     write("run.toml", config_with_time(2.0));
     const CliResult r = run_pedesis("run run.toml --out out", dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    for (const char* f : {"config.toml", "log.csv", "trajectory.xyz", "speed_histogram.csv",
-                          "checkpoint.bin", "summary.json", "snapshots/frame_000000.json"})
+    for (const char* f :
+         {"config.toml", "log.csv", "trajectory.gsd", "trajectory.xyz", "speed_histogram.csv",
+          "checkpoint.bin", "summary.json", "snapshots/frame_000000.json"})
         EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "log.csv.part"));
     const auto snap = nlohmann::json::parse(read("out/snapshots/frame_000000.json"));
@@ -76,7 +79,8 @@ TEST_F(CliRun, CollapseStopsCleanlyAndKeepsGoodOutput) {
         "dimension = 2\nseed = 4\n[box]\nlength = 20.0\nboundary = \"wall\"\n"
         "[[species]]\ncount = 200\nradius = 0.5\npositions = \"square\"\n"
         "[run]\ntime = 5.0\n[output]\nlog_interval = 0.05\nsnapshot_interval = 0.05\n"
-        "progress = false\n[event]\nrestitution = 0.1\nwall_restitution = 0.1\n";
+        "progress = false\nformats = [\"gsd\", \"xyz\"]\n"
+        "[event]\nrestitution = 0.1\nwall_restitution = 0.1\n";
     write("collapse.toml", base);
     const CliResult r = run_pedesis("run collapse.toml --out out", dir);
     ASSERT_EQ(r.exit_code, 3) << r.output;
@@ -84,6 +88,8 @@ TEST_F(CliRun, CollapseStopsCleanlyAndKeepsGoodOutput) {
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / "trajectory.xyz"));
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / "log.csv"));
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "trajectory.xyz.part"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "trajectory.gsd"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "trajectory.gsd.part"));
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
     const std::string xyz = read("out/trajectory.xyz");
     EXPECT_GE(std::count(xyz.begin(), xyz.end(), '\n'), 2 * (2 + 200)); // whole frames only

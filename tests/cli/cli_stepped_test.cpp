@@ -24,7 +24,9 @@ std::string gas(const std::string& dynamics_and_engine, const std::string& run =
            "[[species]]\nname = \"B\"\ncount = 50\nradius = 0.7\nmass = 3.0\n"
            "[initial]\nvelocities = \"normal\"\nsigma = 1.0\n"
            "[run]\n" +
-           run + "\n[output]\nlog_interval = 0.5\nsnapshot_interval = 1.0\n";
+           run +
+           "\n[output]\nlog_interval = 0.5\nsnapshot_interval = 1.0\nformats = [\"xyz\", "
+           "\"json\"]\n";
 }
 
 const std::string stepped = "dynamics = \"stepped\"\n[stepped]\ndt = 0.02";
@@ -172,7 +174,7 @@ TEST_F(CliStepped, ParticleTooFastMidRunStopsNamingStepAndParticle) {
         EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in " << r.output;
     // the log and frames up to the stop are kept, complete; no summary
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / "log.csv"));
-    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "trajectory.xyz"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "trajectory.gsd"));
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
 }
 

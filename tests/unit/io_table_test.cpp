@@ -110,7 +110,7 @@ template <int D> void check_table(std::size_t n, std::uint64_t seed) {
     const SoftState<D> shuffled = test::permuted_storage(s, gen);
     ASSERT_NE(shuffled.p.tag, s.p.tag) << "the test needs storage order != tag order";
 
-    const Table t = parse_table(table_frame(shuffled));
+    const Table t = parse_table(table_frame(shuffled.frame()));
     ASSERT_EQ(t.header.size(), 2u);
     std::string first = "time=0.30000000000000004 step=30 Lx=12 Ly=12";
     if (D == 3) first += " Lz=12";
@@ -145,15 +145,15 @@ TEST(io_table, Table3DReadsBackExactlyInTagOrder) {
 TEST(io_table, StorageOrderDoesNotChangeTheTable) {
     const auto s = state_with_everything<2>(25, 5);
     std::mt19937_64 gen(6);
-    EXPECT_EQ(table_frame(test::permuted_storage(s, gen)), table_frame(s));
+    EXPECT_EQ(table_frame(test::permuted_storage(s, gen).frame()), table_frame(s.frame()));
 }
 
 TEST(io_table, EmptySystemHasOnlyTheHeader) {
     SoftState<3> s;
     s.box = Box<3>(Vec<3>{{4.0, 5.0, 6.5}}, {true, true, false});
     s.p.species_table = {Species{"A", 1.0, 1.0}};
-    EXPECT_EQ(table_frame(s), "# time=0 step=0 Lx=4 Ly=5 Lz=6.5\n"
-                              "# id x y z nx ny nz vx vy vz fx fy fz\n");
+    EXPECT_EQ(table_frame(s.frame()), "# time=0 step=0 Lx=4 Ly=5 Lz=6.5\n"
+                                      "# id x y z nx ny nz vx vy vz fx fy fz\n");
 }
 
 TEST(io_table, WriteTableWritesTheFrameAtomically) {
@@ -163,11 +163,11 @@ TEST(io_table, WriteTableWritesTheFrameAtomically) {
     fs::create_directories(dir);
     const auto s = state_with_everything<2>(9, 7);
     const fs::path file = dir / "frame.dat";
-    write_table(file, s);
+    write_table(file, s.frame());
     std::ifstream in(file, std::ios::binary);
     std::ostringstream text;
     text << in.rdbuf();
-    EXPECT_EQ(text.str(), table_frame(s));
+    EXPECT_EQ(text.str(), table_frame(s.frame()));
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1)
         << "no temporary file is left beside it";
     fs::remove_all(dir);

@@ -94,7 +94,7 @@ template <int D> void expect_round_trip(const fs::path& file) {
     for (int a = 0; a < D; ++a) L[a] = 10.0 + a / 3.0;
     const Box<D> box(L, {});
     write_file_atomically(
-        file, [&](std::ostream& out) { out << to_tutorial_json(p, box, 0.125).dump(2); });
+        file, [&](std::ostream& out) { out << to_tutorial_json(frame_of(p, box, 0.125)).dump(2); });
 
     const ParticleFile<D> f = read_tutorial_json<D>(file);
     ASSERT_TRUE(f.box.has_value());
@@ -143,7 +143,7 @@ TEST_F(io_tutorial_json, RoundTripIsBitExactIn3D) {
 
 TEST_F(io_tutorial_json, DocumentLayout) {
     ParticleStore<2> p = shuffled_store<2>(3, 2);
-    const nlohmann::json j = to_tutorial_json(p, Box<2>({4.0, 5.0}, {true, false}), 2.5);
+    const nlohmann::json j = to_tutorial_json(frame_of(p, Box<2>({4.0, 5.0}, {true, false}), 2.5));
     const auto& s = j.at("system");
     EXPECT_EQ(s.at("time"), 2.5);
     EXPECT_EQ(s.at("box"), (nlohmann::json{{"Lx", 4.0}, {"Ly", 5.0}}));
@@ -381,7 +381,7 @@ template <int D> void expect_soft_round_trip(const fs::path& file) {
     std::mt19937_64 gen(D);
     const SoftState<D> shuffled = test::permuted_storage(s, gen);
     ASSERT_NE(shuffled.p.tag, s.p.tag) << "the test needs storage order != tag order";
-    const nlohmann::json doc = to_tutorial_json(shuffled);
+    const nlohmann::json doc = to_tutorial_json(shuffled.frame());
     write_file_atomically(file, [&](std::ostream& out) { out << doc.dump(); });
 
     const ParticleFile<D> f = read_tutorial_json<D>(file);
@@ -424,12 +424,12 @@ TEST_F(io_tutorial_json, SoftStateDocumentIsTheStoreDocumentPlusDirectorAndForce
     const SoftState<2> s = soft_state_with_everything<2>(6, 9);
     std::mt19937_64 gen(1);
     const SoftState<2> shuffled = test::permuted_storage(s, gen);
-    nlohmann::json soft = to_tutorial_json(shuffled);
+    nlohmann::json soft = to_tutorial_json(shuffled.frame());
     for (auto& q : soft.at("system").at("particles")) {
         EXPECT_EQ(q.at("n").size(), 2u);
         EXPECT_EQ(q.at("f").size(), 2u);
         q.erase("n");
         q.erase("f");
     }
-    EXPECT_EQ(soft, to_tutorial_json(shuffled.p, shuffled.box, shuffled.time));
+    EXPECT_EQ(soft, to_tutorial_json(frame_of(shuffled.p, shuffled.box, shuffled.time)));
 }

@@ -173,17 +173,19 @@ template <int D> void check_document(const std::string& doc, const SoftState<D>&
     std::vector<Expected> expected = {
         {"id", "Int32", 1, {}},         {"type", "Int32", 1, {}},
         {"radius", "Float64", 1, {}},   {"director", "Float64", 3, {}},
-        {"velocity", "Float64", 3, {}}, {"force", "Float64", 3, {}}};
+        {"velocity", "Float64", 3, {}}, {"mass", "Float64", 1, {}},
+        {"force", "Float64", 3, {}}};
     std::vector<double> points;
     for (std::size_t tag = 0; tag < n; ++tag) {
         const std::size_t i = storage[tag];
         expected[0].values.push_back(static_cast<double>(tag));
         expected[1].values.push_back(s.p.species[i]);
         expected[2].values.push_back(s.p.species_table[s.p.species[i]].radius);
+        expected[5].values.push_back(s.p.species_table[s.p.species[i]].mass);
         for (int c = 0; c < 3; ++c) {
             expected[3].values.push_back(component<D>(s.director[i], c));
             expected[4].values.push_back(component<D>(s.p.velocity[i], c));
-            expected[5].values.push_back(component<D>(s.force[i], c));
+            expected[6].values.push_back(component<D>(s.force[i], c));
             points.push_back(component<D>(s.p.position[i], c));
         }
     }
@@ -219,27 +221,27 @@ template <int D> void check_document(const std::string& doc, const SoftState<D>&
 
 TEST(io_vtp, Document2DHasAllArraysInTagOrder) {
     const auto s = shuffled_state<2>(37, 1);
-    check_document(vtp_document(s), s);
+    check_document(vtp_document(s.frame()), s);
 }
 
 TEST(io_vtp, Document3DHasAllArraysInTagOrder) {
     const auto s = shuffled_state<3>(23, 2);
-    check_document(vtp_document(s), s);
+    check_document(vtp_document(s.frame()), s);
 }
 
 TEST(io_vtp, EmptySystemIsAValidDocument) {
     SoftState<2> s;
     s.box = Box<2>(Vec<2>::filled(4.0), {true, true});
     s.p.species_table = {Species{"A", 0.5, 1.0}};
-    check_document(vtp_document(s), s);
+    check_document(vtp_document(s.frame()), s);
 }
 
 TEST(io_vtp, StorageOrderDoesNotChangeTheDocument) {
     // Reordering storage (as the engines do) must not change the file.
     auto s = shuffled_state<3>(16, 3);
-    const std::string before = vtp_document(s);
+    const std::string before = vtp_document(s.frame());
     std::mt19937_64 gen(4);
-    EXPECT_EQ(vtp_document(test::permuted_storage(s, gen)), before);
+    EXPECT_EQ(vtp_document(test::permuted_storage(s, gen).frame()), before);
 }
 
 TEST(io_vtp, WriteVtpWritesTheDocumentAtomically) {
@@ -249,11 +251,11 @@ TEST(io_vtp, WriteVtpWritesTheDocumentAtomically) {
     fs::create_directories(dir);
     const auto s = shuffled_state<2>(9, 5);
     const fs::path file = dir / "test_00010.vtp";
-    write_vtp(file, s);
+    write_vtp(file, s.frame());
     std::ifstream in(file, std::ios::binary);
     std::ostringstream text;
     text << in.rdbuf();
-    EXPECT_EQ(text.str(), vtp_document(s));
+    EXPECT_EQ(text.str(), vtp_document(s.frame()));
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
     fs::remove_all(dir);
 }

@@ -88,15 +88,15 @@ struct Row {
     long id;
 };
 
-struct Frame {
+struct ParsedFrame {
     std::size_t n = 0;
     std::map<std::string, std::string> header;
     std::vector<Row> rows;
 };
 
-Frame parse_frame(const std::string& text) {
+ParsedFrame parse_frame(const std::string& text) {
     std::istringstream in(text);
-    Frame f;
+    ParsedFrame f;
     std::string line;
     std::getline(in, line);
     f.n = std::stoul(line);
@@ -123,10 +123,10 @@ TEST(io_xyz_writer, HeaderAndRowsIn3D) {
     const ParticleStore<3> p = shuffled_store<3>(17, 5);
     const Box<3> box({10.0, 12.5, 0.1 + 0.2}, {true, true, false});
     const double time = 1.0 / 3.0;
-    const std::string text = xyz_frame(p, box, time);
+    const std::string text = xyz_frame(frame_of(p, box, time));
     ASSERT_EQ(text.back(), '\n');
 
-    const Frame f = parse_frame(text);
+    const ParsedFrame f = parse_frame(text);
     EXPECT_EQ(f.n, 17u);
     ASSERT_EQ(f.rows.size(), 17u);
     EXPECT_EQ(f.header.at("Properties"), "species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1:id:I:1");
@@ -157,7 +157,7 @@ TEST(io_xyz_writer, HeaderAndRowsIn3D) {
 TEST(io_xyz_writer, TwoDimensionalFrameHasFlatThirdAxis) {
     const ParticleStore<2> p = shuffled_store<2>(9, 11);
     const Box<2> box({7.0, 3.0}, {true, false});
-    const Frame f = parse_frame(xyz_frame(p, box, 2.5));
+    const ParsedFrame f = parse_frame(xyz_frame(frame_of(p, box, 2.5)));
 
     EXPECT_EQ(f.n, 9u);
     ASSERT_EQ(f.rows.size(), 9u);
@@ -184,7 +184,7 @@ TEST(io_xyz_writer, TwoDimensionalFrameHasFlatThirdAxis) {
 TEST(io_xyz_writer, FramesConcatenateIntoATrajectory) {
     const ParticleStore<2> p = shuffled_store<2>(4, 3);
     const Box<2> box({4.0, 4.0}, {true, true});
-    const std::string two = xyz_frame(p, box, 0.0) + xyz_frame(p, box, 1.0);
+    const std::string two = xyz_frame(frame_of(p, box, 0.0)) + xyz_frame(frame_of(p, box, 1.0));
     std::istringstream in(two);
     std::string line;
     int lines = 0;
@@ -197,7 +197,7 @@ TEST(io_xyz_writer, SpeciesNameWithSpaceIsRejected) {
     p.species_table[1].name = "big one";
     const Box<2> box({4.0, 4.0}, {true, true});
     try {
-        (void)xyz_frame(p, box, 0.0);
+        (void)xyz_frame(frame_of(p, box, 0.0));
         FAIL() << "expected InputError";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("big one"), std::string::npos) << e.what();

@@ -74,6 +74,7 @@ template <int D> SoftState<D> sample_state(std::uint64_t seed, std::uint64_t ste
         for (int a = 0; a < D; ++a) s.p.velocity[i][a] = 0.1 * static_cast<double>(i) - a;
     }
     s.step = step;
+    s.time = 0.01 * static_cast<double>(step) + 1.0 / 3.0;
     std::mt19937_64 gen(seed);
     return test::permuted_storage(s, gen);
 }
@@ -87,6 +88,8 @@ std::array<double, 3> rotate_x(const std::array<double, 4>& q) {
 template <int D> void expect_frame(const SoftState<D>& s, const GsdFrame& g) {
     const auto index = s.p.index_of_tags();
     EXPECT_EQ(g.step, s.step);
+    ASSERT_TRUE(g.time.has_value());
+    EXPECT_EQ(*g.time, s.time);
     EXPECT_EQ(g.dimensions, D);
     for (int a = 0; a < 3; ++a)
         EXPECT_EQ(g.box[static_cast<std::size_t>(a)],
@@ -122,7 +125,7 @@ TEST_F(GsdReaderTest, ReadsBackWhatTheWriterWrites2D) {
         GsdWriter<2> w(file);
         for (std::uint64_t k = 0; k < 3; ++k) {
             states.push_back(sample_state<2>(k + 1, 10 * k));
-            w.append(states.back());
+            w.append(states.back().frame());
         }
         w.commit();
     }
@@ -142,7 +145,7 @@ TEST_F(GsdReaderTest, ReadsBackWhatTheWriterWrites3DPastTheFirstIndexBlock) {
         GsdWriter<3> w(file);
         for (std::uint64_t k = 0; k < 20; ++k) {
             states.push_back(sample_state<3>(k + 7, k));
-            w.append(states.back());
+            w.append(states.back().frame());
         }
         w.commit();
     }
@@ -156,8 +159,8 @@ TEST_F(GsdReaderTest, ReadsTheUnfinishedPartFileOfARunningWriter) {
     GsdWriter<2> w(file);
     EXPECT_EQ(GsdReader(w.part_path()).frames(), 0u); // a valid file with no frames yet
     const auto s0 = sample_state<2>(1, 0), s1 = sample_state<2>(2, 5);
-    w.append(s0);
-    w.append(s1);
+    w.append(s0.frame());
+    w.append(s1.frame());
     const GsdReader reader(w.part_path());
     ASSERT_EQ(reader.frames(), 2u);
     expect_frame(s1, reader.frame(1));
@@ -171,9 +174,9 @@ TEST_F(GsdReaderTest, FramesWithoutTypesTakeThoseOfFrameZero) {
     s2.step = 2;
     {
         GsdWriter<2> w(file);
-        w.append(s0);
-        w.append(s1);
-        w.append(s2);
+        w.append(s0.frame());
+        w.append(s1.frame());
+        w.append(s2.frame());
         w.commit();
     }
     const GsdReader reader(file);
@@ -252,8 +255,8 @@ TEST_F(GsdReaderTest, TruncatedFilesAreRefusedNamingTheFile) {
     const fs::path file = dir / "t.gsd";
     {
         GsdWriter<2> w(file);
-        w.append(sample_state<2>(1, 0));
-        w.append(sample_state<2>(2, 1));
+        w.append(sample_state<2>(1, 0).frame());
+        w.append(sample_state<2>(2, 1).frame());
         w.commit();
     }
     const std::string bytes = read_bytes(file);
@@ -272,7 +275,7 @@ TEST_F(GsdReaderTest, CorruptFilesAreRefusedNamingTheFile) {
     const fs::path file = dir / "t.gsd";
     {
         GsdWriter<2> w(file);
-        w.append(sample_state<2>(1, 0));
+        w.append(sample_state<2>(1, 0).frame());
         w.commit();
     }
     const std::string bytes = read_bytes(file);

@@ -67,11 +67,11 @@ void write_all_formats(const fs::path& dir, int frames) {
     std::string xyz;
     for (int k = 0; k < frames; ++k) {
         const SoftState<2> s = sample_state(static_cast<std::uint64_t>(10 * k));
-        gsd.append(s);
-        xyz += xyz_frame(s.p, s.box, s.time);
+        gsd.append(s.frame());
+        xyz += xyz_frame(frame_of(s.p, s.box, s.time));
         char name[32];
         std::snprintf(name, sizeof name, "frame_%06d.json", k);
-        std::ofstream(dir / "snapshots" / name) << to_tutorial_json(s).dump();
+        std::ofstream(dir / "snapshots" / name) << to_tutorial_json(s.frame()).dump();
     }
     gsd.commit();
     std::ofstream(dir / "trajectory.xyz") << xyz;
@@ -104,7 +104,7 @@ TEST_F(RenderSources, EveryFormatGivesTheSameFrame) {
     const auto index = s.p.index_of_tags();
     for (SourceKind kind : {SourceKind::gsd, SourceKind::xyz, SourceKind::json}) {
         const auto run = open_run_directory(dir, kind);
-        const Frame f = run.source->frame(1);
+        const render::Frame f = run.source->frame(1);
         const double tolerance = kind == SourceKind::gsd ? 1e-5 : 0.0; // GSD stores float32
         EXPECT_EQ(f.dimension, 2);
         EXPECT_EQ(f.box_length[2], 0.0);
@@ -139,10 +139,12 @@ TEST_F(RenderSources, EveryFormatGivesTheSameFrame) {
     }
 }
 
-TEST_F(RenderSources, GsdWithoutDtShowsOnlyTheStep) {
+// Without a config (no dt) the time comes from the frame's log/time chunk.
+TEST_F(RenderSources, GsdWithoutDtTakesTheTimeItLogged) {
     write_all_formats(dir, 2);
-    const Frame f = open_run_directory(dir, SourceKind::gsd).source->frame(1);
-    EXPECT_FALSE(f.time.has_value());
+    const render::Frame f = open_run_directory(dir, SourceKind::gsd).source->frame(1);
+    ASSERT_TRUE(f.time.has_value());
+    EXPECT_EQ(*f.time, 0.1); // sample_state(10): 0.01 * 10
     ASSERT_TRUE(f.step.has_value());
     EXPECT_EQ(*f.step, 10u);
     EXPECT_EQ(f.species_names, (std::vector<std::string>{"small", "big"}));
@@ -150,7 +152,7 @@ TEST_F(RenderSources, GsdWithoutDtShowsOnlyTheStep) {
 
 TEST_F(RenderSources, UnfinishedRunIsReadFromItsPartFileWithANote) {
     const SoftState<2> s = sample_state(0);
-    const std::string frame = xyz_frame(s.p, s.box, 0.0);
+    const std::string frame = xyz_frame(frame_of(s.p, s.box, 0.0));
     write("trajectory.xyz.part", frame + frame + frame.substr(0, frame.size() / 3));
     const auto run = open_run_directory(dir, SourceKind::automatic);
     EXPECT_EQ(run.source->frames(), 2u);

@@ -114,7 +114,8 @@ void expect_round_trip(const ParticleStore<D>& p, const Box<D>& box, double time
 TEST_F(XyzReaderTest, ReadsBackWhatTheWriterWrites2D) {
     const auto p = shuffled_store<2>(40, 1);
     const Box<2> box(Vec<2>{{12.0, 10.5}}, {true, false});
-    const auto file = write("t.xyz", xyz_frame(p, box, 0.0) + xyz_frame(p, box, 2.5));
+    const auto file =
+        write("t.xyz", xyz_frame(frame_of(p, box, 0.0)) + xyz_frame(frame_of(p, box, 2.5)));
     const XyzReader reader(file);
     ASSERT_EQ(reader.frames(), 2u);
     EXPECT_FALSE(reader.dropped_torn_tail());
@@ -129,7 +130,7 @@ TEST_F(XyzReaderTest, ReadsBackWhatTheWriterWrites3DAnyFrameInAnyOrder) {
     std::vector<ParticleStore<3>> stores;
     for (unsigned k = 0; k < 5; ++k) {
         stores.push_back(shuffled_store<3>(25, 10 + k));
-        text += xyz_frame(stores.back(), box, 0.1 * k);
+        text += xyz_frame(frame_of(stores.back(), box, 0.1 * k));
     }
     const XyzReader reader(write("t.xyz", text));
     ASSERT_EQ(reader.frames(), 5u);
@@ -163,7 +164,7 @@ TEST_F(XyzReaderTest, ReadsOtherColumnLayoutsAndDefaults) {
 TEST_F(XyzReaderTest, TruncatedFileIsRefusedNamingFileAndFrame) {
     const auto p = shuffled_store<2>(10, 2);
     const Box<2> box(Vec<2>{{12.0, 12.0}}, {false, false});
-    const std::string one = xyz_frame(p, box, 0.0);
+    const std::string one = xyz_frame(frame_of(p, box, 0.0));
     const std::string text = one + one;
     const auto file = write("cut.xyz", text.substr(0, text.size() - one.size() / 2));
     try {
@@ -191,7 +192,7 @@ TEST_F(XyzReaderTest, TruncatedFileIsRefusedNamingFileAndFrame) {
 TEST_F(XyzReaderTest, PartFileOfAKilledRunDropsOnlyTheTornLastFrame) {
     const auto p = shuffled_store<2>(10, 3);
     const Box<2> box(Vec<2>{{12.0, 12.0}}, {false, false});
-    const std::string one = xyz_frame(p, box, 0.0);
+    const std::string one = xyz_frame(frame_of(p, box, 0.0));
     const std::string text = one + one + one;
     // Torn inside a line (no newline at the end) and torn at a line end.
     for (std::size_t cut : {text.size() - 7, text.size() - one.size() / 2}) {

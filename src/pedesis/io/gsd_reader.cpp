@@ -275,6 +275,12 @@ GsdFrame GsdReader::frame(std::uint64_t k) const {
         shaped(*e, 1, 1, "1x1");
         f.step = static_cast<std::uint64_t>(std::max<std::int64_t>(0, integers(*e, k)[0]));
     }
+    // not from frame 0: a time is of its own frame
+    if (const Entry* e = find(k, "log/time")) {
+        shaped(*e, 1, 1, "1x1");
+        const double t = reals(*e, k)[0];
+        if (std::isfinite(t)) f.time = t;
+    }
     if (const Entry* e = find_with_fallback(k, "configuration/dimensions")) {
         shaped(*e, 1, 1, "1x1");
         const std::int64_t d = integers(*e, k)[0];

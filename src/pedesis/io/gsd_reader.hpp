@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +29,7 @@ struct GsdFrame {
     std::vector<std::array<double, 3>> position;
     std::vector<std::array<double, 3>> velocity;
     std::vector<std::array<double, 4>> orientation; // unit quaternions (w, x, y, z)
+    std::optional<double> time;                     // log/time of this frame, if written
     // Whether the file stores them (in this frame or frame 0), or they are the schema's
     // defaults (zero velocities, identity orientations).
     bool velocity_stored = false;

@@ -44,6 +44,7 @@ enum class GsdType : std::uint8_t {
     int8 = 5,
     int32 = 7,
     float32 = 9,
+    float64 = 10,
 };
 
 // Readers look chunks up by binary search over (frame, name id), so each frame's
@@ -61,6 +62,7 @@ enum ChunkId : std::uint16_t {
     orientation_id,
     velocity_id,
     image_id,
+    time_id,
     chunk_count
 };
 
@@ -68,6 +70,7 @@ constexpr std::array<const char*, chunk_count> chunk_names = {
     "configuration/step", "configuration/dimensions", "configuration/box",  "particles/N",
     "particles/types",    "particles/typeid",         "particles/mass",     "particles/diameter",
     "particles/position", "particles/orientation",    "particles/velocity", "particles/image",
+    "log/time",
 };
 
 template <class T> void put(std::string& b, T v) {
@@ -153,9 +156,9 @@ std::vector<std::string> type_names(const std::vector<Species>& table) {
 }
 
 template <int D>
-std::vector<Chunk> frame_chunks(const SoftState<D>& s, bool write_types,
+std::vector<Chunk> frame_chunks(const Frame<D>& s, bool write_types,
                                 const std::vector<std::string>& types) {
-    const ParticleStore<D>& p = s.p;
+    const ParticleStore<D>& p = s.particles;
     const std::vector<std::uint32_t> index = p.index_of_tags();
     const std::size_t n = index.size();
     std::vector<Chunk> chunks;
@@ -190,8 +193,17 @@ std::vector<Chunk> frame_chunks(const SoftState<D>& s, bool write_types,
         chunks.push_back(std::move(names));
     }
 
-    // An empty frame keeps only N: chunks of no bytes would need a location of their own.
-    if (n == 0) return chunks;
+    // The simulation time, which the schema has no place for (HOOMD-blue's loggers write
+    // theirs under log/ too; gsd.hoomd gives it as frame.log["time"]).
+    Chunk time{time_id, GsdType::float64, 1, 1, {}};
+    put<double>(time.bytes, s.time);
+
+    // An empty frame keeps only N and the time: chunks of no bytes would need a location
+    // of their own.
+    if (n == 0) {
+        chunks.push_back(std::move(time));
+        return chunks;
+    }
 
     Chunk typeid_chunk{typeid_id, GsdType::uint32, n, 1, {}};
     Chunk mass{mass_id, GsdType::float32, n, 1, {}};
@@ -207,7 +219,8 @@ std::vector<Chunk> frame_chunks(const SoftState<D>& s, bool write_types,
 
         const auto r = as_3d(p.position[i]);
         std::array<std::int32_t, 3> img{0, 0, 0};
-        for (int a = 0; a < D; ++a) img[a] = s.image[i][a];
+        const std::array<std::int32_t, D> stored = s.image(i);
+        for (int a = 0; a < D; ++a) img[a] = stored[a];
         for (int a = 0; a < 3; ++a) {
             float x = static_cast<float>(r[a]);
             if (a < D && s.box.periodic(a) && x >= 0.5f * L[a]) {
@@ -218,16 +231,19 @@ std::vector<Chunk> frame_chunks(const SoftState<D>& s, bool write_types,
         }
         for (std::int32_t k : img) put<std::int32_t>(image.bytes, k);
 
-        for (float c : orientation_of(as_3d(s.director[i]))) put<float>(orientation.bytes, c);
+        if (s.has_director())
+            for (float c : orientation_of(as_3d(s.director(i)))) put<float>(orientation.bytes, c);
         for (double v : as_3d(p.velocity[i])) put<float>(velocity.bytes, static_cast<float>(v));
     }
     chunks.push_back(std::move(typeid_chunk));
     chunks.push_back(std::move(mass));
     chunks.push_back(std::move(diameter));
     chunks.push_back(std::move(position));
-    chunks.push_back(std::move(orientation));
+    // without directors the schema's default, the identity, says it all
+    if (s.has_director()) chunks.push_back(std::move(orientation));
     chunks.push_back(std::move(velocity));
     chunks.push_back(std::move(image));
+    chunks.push_back(std::move(time));
     return chunks;
 }
 
@@ -288,10 +304,10 @@ template <int D> void GsdWriter<D>::write_header() {
 // is copied, with the new entries, to a twice larger block at the end of the file, and
 // only then does the header point to it. Writes go straight to the kernel (no user-space buffer),
 // so a killed process loses nothing already appended; a power cut is not covered.
-template <int D> void GsdWriter<D>::append(const SoftState<D>& s) {
+template <int D> void GsdWriter<D>::append(const Frame<D>& s) {
     if (committed_) throw std::logic_error("GsdWriter::append after commit");
 
-    const std::vector<std::string> types = type_names(s.p.species_table);
+    const std::vector<std::string> types = type_names(s.particles.species_table);
     const bool write_types = frames_ == 0 || types != first_types_;
     const std::vector<Chunk> chunks = frame_chunks(s, write_types, types);
 

@@ -5,7 +5,8 @@
 //
 // Each frame holds configuration/step, configuration/dimensions, configuration/box,
 // and particles/N, typeid, mass, diameter, position, orientation, velocity, image,
-// in tag order and as float32 where the schema says float. particles/types is written
+// in tag order and as float32 where the schema says float, and the simulation time
+// as log/time (float64). particles/types is written
 // in frame 0 and in every frame whose species table differs from frame 0's: a reader
 // takes a chunk missing from a frame from frame 0, not from the previous frame.
 //
@@ -16,11 +17,12 @@
 //   is written as a box edge like any other.
 // - The orientation is the unit quaternion of the shortest rotation taking the x axis
 //   onto the director (in 2D a rotation about z by the director's angle); a zero
-//   director gives the identity.
+//   director gives the identity. A frame without directors (hard particles) has no
+//   orientation chunk, and one without image counts writes image 0.
 // - A position that rounds to +L/2 in float32 on a periodic axis is written as -L/2
 //   with its image count raised by one (the same unwrapped point), because a position
 //   must lie in [-L/2, L/2) for HOOMD to accept the frame.
-#include "pedesis/soft/soft_state.hpp"
+#include "pedesis/core/frame.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -43,7 +45,7 @@ template <int D> class GsdWriter {
 
     // Appends one frame. When it returns the ".part" file is a valid GSD file that
     // includes the frame; if the process dies inside, the file stays valid without it.
-    void append(const SoftState<D>& s);
+    void append(const Frame<D>& s);
 
     // Closes the file and renames it onto the final path; a second call does nothing.
     void commit();

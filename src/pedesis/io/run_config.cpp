@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/config_table.hpp"
+#include "pedesis/io/frame_writers.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
 #include <algorithm>
@@ -108,17 +109,16 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
     }
 }
 
-std::vector<std::string> read_formats(const toml::table& doc, ConfigTable& out,
-                                      const std::vector<std::string>& allowed) {
+// Any engine writes any frame format (io/frame_writers.hpp keeps the list).
+std::vector<std::string> read_formats(const toml::table& doc, ConfigTable& out) {
     const toml::node* n = doc["output"]["formats"].node();
     const auto* arr = n ? n->as_array() : nullptr;
-    std::string list;
-    for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+    const std::string list = frame_format_list();
     if (!arr) throw InputError(out.where("formats") + ": expected a list such as [" + list + "]");
     std::vector<std::string> formats;
     for (std::size_t k = 0; k < arr->size(); ++k) {
         auto s = (*arr)[k].value_exact<std::string>();
-        if (!s || std::find(allowed.begin(), allowed.end(), *s) == allowed.end())
+        if (!s || std::find(frame_formats.begin(), frame_formats.end(), *s) == frame_formats.end())
             throw InputError(out.where("formats") + ": each entry must be one of " + list);
         formats.push_back(*s);
     }
@@ -244,7 +244,7 @@ void read_event_output(const toml::table& doc, ConfigTable& root, RunConfig& c) 
         c.snapshot_interval = out->number("snapshot_interval", 0.0);
         if (c.snapshot_interval < 0)
             throw InputError(out->where("snapshot_interval") + ": must be >= 0");
-        if (out->has("formats")) c.formats = read_formats(doc, *out, {"xyz", "json"});
+        if (out->has("formats")) c.formats = read_formats(doc, *out);
         if (auto b = out->integer("histogram_bins")) {
             if (*b < 1 || *b > 100000)
                 throw InputError(out->where("histogram_bins") + ": must lie in [1, 100000]");
@@ -318,8 +318,7 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
         c.log_every = read_count(*out, "log_every", c.log_every, true);
         c.snapshot_every = read_count(*out, "snapshot_every", 0, false);
         c.checkpoint_every = read_count(*out, "checkpoint_every", 0, false);
-        if (out->has("formats"))
-            c.formats = read_formats(doc, *out, {"vtp", "gsd", "json", "xyz", "table"});
+        if (out->has("formats")) c.formats = read_formats(doc, *out);
         c.progress = out->boolean("progress").value_or(true);
         out->finish();
     }

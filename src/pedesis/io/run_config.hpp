@@ -71,7 +71,7 @@ struct RunConfig {
     // [output]
     double log_interval = 1.0;
     double snapshot_interval = 0.0; // 0: first and last frame only
-    std::vector<std::string> formats = {"xyz", "json"};
+    std::vector<std::string> formats = {"gsd"};
     int histogram_bins = 50;
     std::optional<double> histogram_start; // unset: histogram of the final state only
     double checkpoint_interval = 0.0;      // 0: only at the end

@@ -244,22 +244,15 @@ FileParticle<D> read_particle(const json& j, std::size_t index, const std::strin
 
 } // namespace
 
-template <int D>
-nlohmann::json to_tutorial_json(const ParticleStore<D>& p, const Box<D>& box, double time) {
+template <int D> nlohmann::json to_tutorial_json(const Frame<D>& f) {
     json particles = json::array();
-    for (std::uint32_t i : p.index_of_tags()) particles.push_back(particle_value(p, i));
-    return document(box, time, std::move(particles));
-}
-
-template <int D> nlohmann::json to_tutorial_json(const SoftState<D>& s) {
-    json particles = json::array();
-    for (std::uint32_t i : s.p.index_of_tags()) {
-        json q = particle_value(s.p, i);
-        q["n"] = vec_value(s.director[i]);
-        q["f"] = vec_value(s.force[i]);
+    for (std::uint32_t i : f.particles.index_of_tags()) {
+        json q = particle_value(f.particles, i);
+        if (f.has_director()) q["n"] = vec_value(f.director(i));
+        if (f.has_force()) q["f"] = vec_value(f.force(i));
         particles.push_back(std::move(q));
     }
-    return document(s.box, s.time, std::move(particles));
+    return document(f.box, f.time, std::move(particles));
 }
 
 template <int D> ParticleFile<D> read_tutorial_json(const fs::path& path) {
@@ -293,10 +286,8 @@ template <int D> ParticleFile<D> read_tutorial_json(const fs::path& path) {
     return out;
 }
 
-template nlohmann::json to_tutorial_json(const ParticleStore<2>&, const Box<2>&, double);
-template nlohmann::json to_tutorial_json(const ParticleStore<3>&, const Box<3>&, double);
-template nlohmann::json to_tutorial_json(const SoftState<2>&);
-template nlohmann::json to_tutorial_json(const SoftState<3>&);
+template nlohmann::json to_tutorial_json(const Frame<2>&);
+template nlohmann::json to_tutorial_json(const Frame<3>&);
 template ParticleFile<2> read_tutorial_json(const fs::path&);
 template ParticleFile<3> read_tutorial_json(const fs::path&);
 

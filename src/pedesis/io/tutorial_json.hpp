@@ -9,9 +9,8 @@
 // tutorial's own dump does. Vectors have D components. Keys that pedesis has no use
 // for on reading (e.g. the force "f") are ignored.
 #include "pedesis/core/box.hpp"
-#include "pedesis/core/particles.hpp"
+#include "pedesis/core/frame.hpp"
 #include "pedesis/core/vec.hpp"
-#include "pedesis/soft/soft_state.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -23,14 +22,11 @@
 namespace pedesis {
 
 // Particles in tag order; "type" is the species index. Doubles are written with
-// round-trip precision, so reading the document back gives identical values.
-template <int D>
-nlohmann::json to_tutorial_json(const ParticleStore<D>& p, const Box<D>& box, double time);
-
-// The same document for a soft/active state, each particle with its director "n"
-// and the force "f" of the last step beside "v": what the tutorial's pymd reads as
-// an initial configuration (it takes "n", "v" and "f" when present).
-template <int D> nlohmann::json to_tutorial_json(const SoftState<D>& s);
+// round-trip precision, so reading the document back gives identical values. A frame
+// with directors and forces (soft/active) gives each particle its director "n" and the
+// force "f" of the last step beside "v": what the tutorial's pymd reads as an initial
+// configuration (it takes "n", "v" and "f" when present).
+template <int D> nlohmann::json to_tutorial_json(const Frame<D>& f);
 
 // One particle as the file gives it; what the file leaves out stays empty and is
 // for the caller to fill from its own defaults.

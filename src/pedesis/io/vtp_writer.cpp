@@ -43,8 +43,8 @@ void vector_row(Out out, const std::array<double, 3>& v) {
 
 } // namespace
 
-template <int D> std::string vtp_document(const SoftState<D>& s) {
-    const ParticleStore<D>& p = s.p;
+template <int D> std::string vtp_document(const Frame<D>& s) {
+    const ParticleStore<D>& p = s.particles;
     const std::vector<std::uint32_t> index = p.index_of_tags();
     const std::size_t n = index.size();
 
@@ -75,12 +75,16 @@ template <int D> std::string vtp_document(const SoftState<D>& s) {
                [&](Out o, std::size_t k) { fmt::format_to(o, "{}", p.species[index[k]]); });
     data_array(out, "Float64", "radius", 1, n,
                [&](Out o, std::size_t k) { fmt::format_to(o, "{}", p.radius(index[k])); });
-    data_array(out, "Float64", "director", 3, n,
-               [&](Out o, std::size_t k) { vector_row(o, as_3d(s.director[index[k]])); });
+    if (s.has_director())
+        data_array(out, "Float64", "director", 3, n,
+                   [&](Out o, std::size_t k) { vector_row(o, as_3d(s.director(index[k]))); });
     data_array(out, "Float64", "velocity", 3, n,
                [&](Out o, std::size_t k) { vector_row(o, as_3d(p.velocity[index[k]])); });
-    data_array(out, "Float64", "force", 3, n,
-               [&](Out o, std::size_t k) { vector_row(o, as_3d(s.force[index[k]])); });
+    data_array(out, "Float64", "mass", 1, n,
+               [&](Out o, std::size_t k) { fmt::format_to(o, "{}", p.mass(index[k])); });
+    if (s.has_force())
+        data_array(out, "Float64", "force", 3, n,
+                   [&](Out o, std::size_t k) { vector_row(o, as_3d(s.force(index[k]))); });
     fmt::format_to(out, "      </PointData>\n");
 
     fmt::format_to(out, "      <Points>\n");
@@ -102,14 +106,14 @@ template <int D> std::string vtp_document(const SoftState<D>& s) {
     return fmt::to_string(buf);
 }
 
-template <int D> void write_vtp(const std::filesystem::path& path, const SoftState<D>& s) {
+template <int D> void write_vtp(const std::filesystem::path& path, const Frame<D>& s) {
     const std::string doc = vtp_document(s);
     write_file_atomically(path, [&](std::ostream& out) { out << doc; });
 }
 
-template std::string vtp_document(const SoftState<2>&);
-template std::string vtp_document(const SoftState<3>&);
-template void write_vtp(const std::filesystem::path&, const SoftState<2>&);
-template void write_vtp(const std::filesystem::path&, const SoftState<3>&);
+template std::string vtp_document(const Frame<2>&);
+template std::string vtp_document(const Frame<3>&);
+template void write_vtp(const std::filesystem::path&, const Frame<2>&);
+template void write_vtp(const std::filesystem::path&, const Frame<3>&);
 
 } // namespace pedesis

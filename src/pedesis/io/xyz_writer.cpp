@@ -34,7 +34,9 @@ template <int D> std::array<double, 3> as_3d(const Vec<D>& v) {
 
 } // namespace
 
-template <int D> std::string xyz_frame(const ParticleStore<D>& p, const Box<D>& box, double time) {
+template <int D> std::string xyz_frame(const Frame<D>& f) {
+    const ParticleStore<D>& p = f.particles;
+    const Box<D>& box = f.box;
     check_species_names(p.species_table);
 
     // A 2D box becomes a cell of unit height centred on z = 0, non-periodic in z.
@@ -51,7 +53,7 @@ template <int D> std::string xyz_frame(const ParticleStore<D>& p, const Box<D>& 
     fmt::format_to(out, "Lattice=\"{} 0 0 0 {} 0 0 0 {}\" Origin=\"{} {} {}\" ", L[0], L[1], L[2],
                    -0.5 * L[0], -0.5 * L[1], -0.5 * L[2]);
     fmt::format_to(out, "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1:id:I:1 ");
-    fmt::format_to(out, "Time={} pbc=\"{} {} {}\"\n", time, pbc[0], pbc[1], pbc[2]);
+    fmt::format_to(out, "Time={} pbc=\"{} {} {}\"\n", f.time, pbc[0], pbc[1], pbc[2]);
 
     const std::vector<std::uint32_t> index = p.index_of_tags();
     for (std::uint32_t i : index) {
@@ -65,7 +67,7 @@ template <int D> std::string xyz_frame(const ParticleStore<D>& p, const Box<D>& 
     return fmt::to_string(buf);
 }
 
-template std::string xyz_frame(const ParticleStore<2>&, const Box<2>&, double);
-template std::string xyz_frame(const ParticleStore<3>&, const Box<3>&, double);
+template std::string xyz_frame(const Frame<2>&);
+template std::string xyz_frame(const Frame<3>&);
 
 } // namespace pedesis

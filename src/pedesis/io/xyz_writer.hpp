@@ -1,7 +1,6 @@
 #pragma once
 // Extended-XYZ trajectory frames, the text format OVITO and ASE read directly.
-#include "pedesis/core/box.hpp"
-#include "pedesis/core/particles.hpp"
+#include "pedesis/core/frame.hpp"
 
 #include <string>
 
@@ -13,6 +12,6 @@ namespace pedesis {
 // Columns: species name, position, velocity, radius, mass ("inf" for fixed
 // obstacles), tag. Values are written with the shortest text that reads back to
 // the same double. 2D systems are written with z = 0 in a cell of unit height.
-template <int D> std::string xyz_frame(const ParticleStore<D>& p, const Box<D>& box, double time);
+template <int D> std::string xyz_frame(const Frame<D>& f);
 
 } // namespace pedesis

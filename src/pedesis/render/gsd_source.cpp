@@ -48,7 +48,10 @@ class GsdSource final : public FrameSource {
         }
         f.periodic = facts_.periodic.value_or(std::array<bool, 3>{true, true, f.dimension == 3});
         f.step = g.step;
-        if (facts_.dt) f.time = static_cast<double>(g.step) * *facts_.dt;
+        if (g.time)
+            f.time = *g.time;
+        else if (facts_.dt)
+            f.time = static_cast<double>(g.step) * *facts_.dt;
 
         f.position = g.position;
         f.radius.reserve(g.size());

@@ -165,7 +165,12 @@ template <int D> class EventRun {
             engine_->packing_fraction(), g.last_pressure);
     }
 
-    void frame() { out_.frame(engine_->snapshot(), engine_->box(), engine_->time()); }
+    void frame() {
+        const ParticleStore<D> now = engine_->snapshot();
+        const auto& n = engine_->counters();
+        out_.frame(
+            Frame<D>{engine_->box(), now, engine_->time(), n.pair_collisions + n.wall_collisions});
+    }
 
     void finish(StopReason reason) {
         const auto& e = *engine_;

@@ -60,12 +60,7 @@ template <int D> void HardRunOutput<D>::open(const std::string& extra_columns) {
         header += ",temperature_" + s.name + ",kinetic_energy_" + s.name;
     header += ",pressure,pressure_ideal,compressibility,mean_free_time" + extra_columns + "\n";
     log_->append(header);
-    if (wants("xyz"))
-        trajectory_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "trajectory.xyz");
-}
-
-template <int D> bool HardRunOutput<D>::wants(const std::string& f) const {
-    return std::find(c_.formats.begin(), c_.formats.end(), f) != c_.formats.end();
+    frames_ = std::make_unique<FrameWriters<D>>(o_.out_dir, c_.formats);
 }
 
 template <int D>
@@ -107,15 +102,8 @@ template <int D> void HardRunOutput<D>::append_log(const std::string& line) {
     log_->append(line);
 }
 
-template <int D>
-void HardRunOutput<D>::frame(const ParticleStore<D>& p, const Box<D>& box, double t) {
-    if (trajectory_) trajectory_->append(xyz_frame(p, box, t));
-    if (wants("json")) {
-        const auto j = to_tutorial_json(p, box, t);
-        write_file_atomically(o_.out_dir / "snapshots" /
-                                  fmt::format("frame_{:06d}.json", record_.frames),
-                              [&](std::ostream& out) { out << j.dump() << "\n"; });
-    }
+template <int D> void HardRunOutput<D>::frame(const Frame<D>& f) {
+    frames_->write(f, record_.frames);
     ++record_.frames;
 }
 
@@ -134,7 +122,7 @@ template <int D> void HardRunOutput<D>::write_speed_histogram(const ParticleStor
 
 template <int D> void HardRunOutput<D>::close() {
     if (log_) log_->commit();
-    if (trajectory_) trajectory_->commit();
+    if (frames_) frames_->commit();
 }
 
 template <int D>

@@ -7,6 +7,7 @@
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_engine.hpp" // EventCounters: the running totals of both engines
 #include "pedesis/io/atomic_file.hpp"
+#include "pedesis/io/frame_writers.hpp"
 #include "pedesis/io/run_config.hpp"
 #include "pedesis/observe/speed_histogram.hpp"
 #include "pedesis/observe/thermo.hpp"
@@ -64,8 +65,8 @@ template <int D> class HardRunOutput {
                    const EventCounters<D>& counters);
     void append_log(const std::string& line);
 
-    // A frame of p (positions and velocities current) to trajectory.xyz and snapshots/.
-    void frame(const ParticleStore<D>& p, const Box<D>& box, double t);
+    // A frame (positions and velocities current) in every format the config asks for.
+    void frame(const Frame<D>& f);
 
     // speed_histogram.csv from the samples, plus `final_state` when the histogram is of
     // the final state only. Not in the record, so a continued run does not count it twice.
@@ -83,13 +84,11 @@ template <int D> class HardRunOutput {
     void write_summary(const nlohmann::json& j) const;
 
   private:
-    bool wants(const std::string& format) const;
-
     const RunConfig& c_;
     const RunOptions& o_;
     HardRunRecord<D>& record_;
     std::unique_ptr<AtomicAppendFile> log_;
-    std::unique_ptr<AtomicAppendFile> trajectory_;
+    std::unique_ptr<FrameWriters<D>> frames_;
 };
 
 // "30w x 20p": the box for the first printed line.

@@ -2,11 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
-#include "pedesis/io/gsd_writer.hpp"
-#include "pedesis/io/table_writer.hpp"
-#include "pedesis/io/tutorial_json.hpp"
-#include "pedesis/io/vtp_writer.hpp"
-#include "pedesis/io/xyz_writer.hpp"
+#include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/soft_observables.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/run/run_directory.hpp"
@@ -137,10 +133,6 @@ template <int D> class SoftRun {
         return s;
     }
 
-    bool wants(const std::string& f) const {
-        return std::find(c_.formats.begin(), c_.formats.end(), f) != c_.formats.end();
-    }
-
     void prepare_directory() {
         prepare_run_directory(o_.out_dir, o_.config_path, {"summary.json"});
         log_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "log.csv");
@@ -148,9 +140,7 @@ template <int D> class SoftRun {
         if (inertial()) header += "kinetic_energy,temperature,";
         header += "pressure,pressure_ideal,pressure_virial,pressure_active,list_rebuilds\n";
         log_->append(header);
-        if (wants("xyz"))
-            trajectory_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "trajectory.xyz");
-        if (wants("gsd")) gsd_ = std::make_unique<GsdWriter<D>>(o_.out_dir / "trajectory.gsd");
+        frames_ = std::make_unique<FrameWriters<D>>(o_.out_dir, c_.formats);
     }
 
     bool inertial() const { return c_.dynamics != "brownian"; }
@@ -207,18 +197,7 @@ template <int D> class SoftRun {
     }
 
     void frame() {
-        const auto name = [&](const char* ext) {
-            return o_.out_dir / "snapshots" / fmt::format("frame_{:06d}.{}", book_.frames, ext);
-        };
-        if (wants("vtp")) write_vtp(name("vtp"), state_);
-        if (wants("json")) {
-            const auto j = to_tutorial_json(state_);
-            write_file_atomically(name("json"),
-                                  [&](std::ostream& out) { out << j.dump() << "\n"; });
-        }
-        if (wants("table")) write_table(name("txt"), state_);
-        if (trajectory_) trajectory_->append(xyz_frame(state_.p, state_.box, state_.time));
-        if (gsd_) gsd_->append(state_);
+        frames_->write(state_.frame(), book_.frames);
         ++book_.frames;
         ++frames_written_;
         last_frame_step_ = state_.step;
@@ -226,8 +205,7 @@ template <int D> class SoftRun {
 
     void close_streams() {
         if (log_) log_->commit();
-        if (trajectory_) trajectory_->commit();
-        if (gsd_) gsd_->commit();
+        if (frames_) frames_->commit();
     }
 
     void finish() {
@@ -280,8 +258,8 @@ template <int D> class SoftRun {
     SoftRunBook<D> book_;
     std::vector<double> alpha_, brownian_T_;
     const Momentum momentum_ = momentum_of(c_);
-    std::unique_ptr<AtomicAppendFile> log_, trajectory_;
-    std::unique_ptr<GsdWriter<D>> gsd_;
+    std::unique_ptr<AtomicAppendFile> log_;
+    std::unique_ptr<FrameWriters<D>> frames_;
     std::uint64_t last_frame_step_ = 0;
     std::uint64_t frames_written_ = 0; // by this invocation (a restart starts at 0)
     std::uint64_t step_start_ = 0;

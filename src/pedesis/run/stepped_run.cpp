@@ -117,7 +117,7 @@ template <int D> class SteppedRun {
                 suggested);
         if (!o_.restart) {
             log_row();
-            out_.frame(e.particles(), e.box(), e.time());
+            frame();
         }
         const double t_end = c_.stop_time.value_or(std::numeric_limits<double>::infinity());
         double next_log = next_multiple(e.time(), c_.log_interval);
@@ -141,7 +141,7 @@ template <int D> class SteppedRun {
                 }
                 if (c_.snapshot_interval > 0 && reached(t, next_snap, c_.snapshot_interval) &&
                     !why) {
-                    out_.frame(e.particles(), e.box(), t);
+                    frame();
                     next_snap = next_multiple(t, c_.snapshot_interval);
                 }
                 if (c_.checkpoint_interval > 0 && reached(t, next_ckpt, c_.checkpoint_interval) &&
@@ -181,6 +181,11 @@ template <int D> class SteppedRun {
                                  state_.integral_T_dt / t, degrees_of_freedom);
     }
 
+    void frame() {
+        const auto& e = *engine_;
+        out_.frame(Frame<D>{e.box(), e.particles(), e.time(), e.steps()});
+    }
+
     void log_row() {
         const auto& e = *engine_;
         const LogRow row = out_.measure(e.particles(), e.box(), e.time(), e.counters());
@@ -207,7 +212,7 @@ template <int D> class SteppedRun {
 
     void finish(const char* why) {
         const auto& e = *engine_;
-        out_.frame(e.particles(), e.box(), e.time());
+        frame();
         save_checkpoint(o_.out_dir / "checkpoint.bin", e, state_);
         out_.write_speed_histogram(e.particles());
         out_.close();

@@ -4,6 +4,7 @@
 // Positions are kept wrapped into the box; `image` counts the periodic boxes crossed so
 // that unwrapped positions (for the MSD) are r + image * L.
 #include "pedesis/core/box.hpp"
+#include "pedesis/core/frame.hpp"
 #include "pedesis/core/particles.hpp"
 
 #include <array>
@@ -51,6 +52,10 @@ template <int D> struct SoftState {
         permute(torque);
         permute(image);
     }
+
+    // The view writers and observers take (valid while the state is neither resized nor
+    // reordered).
+    Frame<D> frame() const { return {box, p, time, step, &director, &force, &image}; }
 
     Vec<D> unwrapped(std::size_t i) const {
         Vec<D> r = p.position[i];
