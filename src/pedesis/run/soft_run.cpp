@@ -109,21 +109,17 @@ template <int D> class SoftRun {
     }
 
   private:
+    // The plug-ins say what the logs need: an overdamped position integrator (its bath
+    // temperature gives the ideal-gas pressure) and the forces' swim pressure.
     void read_observable_parameters(const std::vector<Species>& table) {
-        alpha_.assign(table.size(), 0.0);
-        for (const auto& f : c_.forces)
-            if (f.name == "self_propulsion") {
-                const PerSpecies a = plugin_parameter(f, "alpha", table);
-                for (std::size_t s = 0; s < table.size(); ++s) alpha_[s] += a.at(s, table.size());
-            }
-        // overdamped: the ideal-gas term is n T of the position integrator
-        for (const auto& i : c_.integrators)
-            if (i.name == "brownian") {
-                const PerSpecies T = plugin_parameter(i, "T", table);
-                brownian_T_.resize(table.size());
-                for (std::size_t s = 0; s < table.size(); ++s)
-                    brownian_T_[s] = T.at(s, table.size());
-            }
+        overdamped_ = nullptr;
+        for (const auto& i : evolver_->integrators())
+            if (i->overdamped_positions()) overdamped_ = i.get();
+        if (overdamped_) {
+            bath_T_.resize(table.size());
+            for (std::size_t s = 0; s < table.size(); ++s)
+                bath_T_[s] = overdamped_->bath_temperature(s, table.size());
+        }
     }
 
     std::string box_text() const {
@@ -143,7 +139,7 @@ template <int D> class SoftRun {
         frames_ = std::make_unique<FrameWriters<D>>(o_.out_dir, c_.formats);
     }
 
-    bool inertial() const { return c_.dynamics != "brownian"; }
+    bool inertial() const { return overdamped_ == nullptr; }
 
     void log_row() {
         const auto& s = state_;
@@ -156,11 +152,12 @@ template <int D> class SoftRun {
             k = measure_kinetics(s.p, s.box, momentum_);
             ideal = 2.0 * k.total_thermal / (D * V);
         } else {
-            for (std::size_t i = 0; i < s.size(); ++i) ideal += brownian_T_[s.p.species[i]];
+            for (std::size_t i = 0; i < s.size(); ++i) ideal += bath_T_[s.p.species[i]];
             ideal /= V;
         }
         const double virial = pair.virial / (D * V);
-        const double active = active_pressure(s, book_.start, alpha_);
+        double active = 0.0;
+        for (const auto& f : evolver_->forces()) active += f->swim_pressure(s, book_.start);
         const double pressure = ideal + virial + active;
         const double order = polar_order(s);
         std::string row = fmt::format("{},{:.10g},{:.8g},{:.10g},{:.10g},", s.step, s.time, order,
@@ -256,7 +253,8 @@ template <int D> class SoftRun {
     SoftState<D> state_;
     std::unique_ptr<Evolver<D>> evolver_;
     SoftRunBook<D> book_;
-    std::vector<double> alpha_, brownian_T_;
+    const Integrator<D>* overdamped_ = nullptr;
+    std::vector<double> bath_T_; // per species, of the overdamped integrator
     const Momentum momentum_ = momentum_of(c_);
     std::unique_ptr<AtomicAppendFile> log_;
     std::unique_ptr<FrameWriters<D>> frames_;

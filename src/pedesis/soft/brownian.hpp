@@ -56,6 +56,10 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
         detail::check_overdamped(T_, gamma_, "brownian");
     }
     std::string name() const override { return "brownian"; }
+    bool overdamped_positions() const override { return true; }
+    double bath_temperature(std::size_t s, std::size_t count) const override {
+        return T_.at(s, count);
+    }
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }
 

@@ -5,7 +5,9 @@
 #include "pedesis/soft/soft_state.hpp"
 #include "pedesis/spatial/neighbor_list.hpp"
 
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace pedesis {
 
@@ -24,6 +26,11 @@ template <int D> class ForceTerm {
     virtual double range(const SoftState<D>&) const { return 0.0; }
     virtual void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const = 0;
     virtual void add_totals(const SoftState<D>&, const NeighborList<D>&, PairTotals&) const {}
+    // The term's share of the pressure that is not a pair virial: the swim pressure of an
+    // active force, from the unwrapped displacements since `start` (indexed by tag).
+    virtual double swim_pressure(const SoftState<D>&, const std::vector<Vec<D>>& /*start*/) const {
+        return 0.0;
+    }
 };
 
 template <int D> class TorqueTerm {
@@ -47,6 +54,16 @@ template <int D> class Integrator {
     virtual bool needs_initial_forces() const { return false; }
     virtual void prestep(SoftState<D>&, double /*dt*/, double /*max_move*/) {}
     virtual void poststep(SoftState<D>&, double /*dt*/, double /*max_move*/) {}
+
+    // What the logs need of the integrator's physics, so that no run code looks at its
+    // name. An overdamped position integrator has no inertia: the kinetic part of the
+    // pressure is then n T of its bath, and velocities are not thermal.
+    virtual bool overdamped_positions() const { return false; }
+    // The temperature of the bath it couples species s to (of `count` species), or NaN
+    // for none (energy-conserving, or rotations only).
+    virtual double bath_temperature(std::size_t /*s*/, std::size_t /*count*/) const {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
 };
 
 } // namespace pedesis
