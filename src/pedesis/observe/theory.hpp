@@ -1,6 +1,6 @@
 #pragma once
-// Reference results from kinetic theory and liquid-state theory (see docs/physics.md
-// and ../shared/PHYSICS.md). Units: k_B = 1; sigma is a diameter.
+// Reference results from kinetic theory and liquid-state theory (see docs/validation.md).
+// Units: k_B = 1; sigma is a diameter.
 #include <algorithm>
 #include <cmath>
 #include <numbers>

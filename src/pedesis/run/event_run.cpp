@@ -8,6 +8,7 @@
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/run/hard_checkpoint.hpp"
+#include "pedesis/run/hard_run_engine.hpp"
 #include "pedesis/run/hard_run_output.hpp"
 #include "pedesis/setup/build_system.hpp"
 
@@ -28,12 +29,6 @@ namespace {
 constexpr std::uint64_t run_checkpoint_magic = 0x31304e5552444550ull; // "PEDRUN01"
 
 template <int D>
-void save_checkpoint(const std::filesystem::path& path, const EventEngine<D>& e,
-                     const HardRunRecord<D>& s) {
-    save_hard_checkpoint(path, run_checkpoint_magic, e, s);
-}
-
-template <int D>
 std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& path,
                                                 const RunConfig& c, HardRunRecord<D>& s) {
     return load_hard_checkpoint<EventEngine<D>>(
@@ -43,96 +38,119 @@ std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& pat
         });
 }
 
-template <int D> class EventRun {
-  public:
-    EventRun(const RunConfig& c, const RunOptions& o, std::ostream& console)
-        : c_(c), o_(o), console_(console), out_(c, o, state_) {}
+// The event-driven engine as the Simulation drives it. Its clock is continuous: it
+// stops exactly at each trigger time, so frames and rows lie on the time grid.
+template <int D> class EventRunEngine final : public HardRunEngine<D> {
+    using Base = HardRunEngine<D>;
+    using Base::c_, Base::o_, Base::console_, Base::record_, Base::out_;
 
-    void execute() {
+  public:
+    EventRunEngine(const RunConfig& c, const RunOptions& o, std::ostream& console)
+        : HardRunEngine<D>(c, o, console) {
         const Box<D> box = build_box<D>(c_);
         if (o_.restart) {
-            engine_ = load_checkpoint<D>(*o_.restart, c_, state_);
+            engine_ = load_checkpoint<D>(*o_.restart, c_, record_);
         } else {
             engine_ = std::make_unique<EventEngine<D>>(build_particles<D>(c_, box), box,
                                                        event_params(c_));
-            state_.initial_kinetic = engine_->kinetic_energy();
-            state_.last_temperature =
+            record_.initial_kinetic = engine_->kinetic_energy();
+            record_.last_temperature =
                 measure_kinetics(engine_->lazy_particles(), box, hard_particle_dynamics)
                     .temperature();
-            state_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
+            record_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
         growing_ = c_.growth_rate > 0;
-        out_.open(growing_ ? ",list_rebuilds,packing_fraction,growth_pressure" : ",list_rebuilds");
         const std::size_t n = engine_->size();
-
-        StopLimits limits;
-        const double t_end = c_.stop_time.value_or(std::numeric_limits<double>::infinity());
+        t_end_ = c_.stop_time.value_or(std::numeric_limits<double>::infinity());
         if (c_.stop_collisions_per_particle)
-            limits.pair_collisions = static_cast<std::uint64_t>(
+            limits_.pair_collisions = static_cast<std::uint64_t>(
                 std::ceil(*c_.stop_collisions_per_particle * static_cast<double>(n)));
         if (c_.stop_energy_fraction)
-            limits.min_kinetic_energy = *c_.stop_energy_fraction * state_.initial_kinetic;
+            limits_.min_kinetic_energy = *c_.stop_energy_fraction * record_.initial_kinetic;
+    }
 
+    // The collisions so far stand in for steps, which this engine does not have.
+    std::uint64_t step() const override {
+        return engine_->counters().pair_collisions + engine_->counters().wall_collisions;
+    }
+    double time() const override { return engine_->time(); }
+
+    Advance advance(std::uint64_t /*until_step*/, double until_time) override {
+        limits_.time = std::min(until_time, t_end_);
+        const StopReason reason = engine_->run(limits_);
+        if (reason == StopReason::grown) announce_growth_end();
+        const bool stop = (reason != StopReason::time && reason != StopReason::grown) ||
+                          (reason == StopReason::grown && c_.stop_when_grown) ||
+                          engine_->time() >= t_end_;
+        return {stop ? reason_name(reason) : nullptr, reason == StopReason::grown};
+    }
+
+    Frame<D> frame() override {
+        snapshot_ = engine_->snapshot();
+        return frame_of(snapshot_, engine_->box(), engine_->time(), step());
+    }
+
+    void save_checkpoint(const std::filesystem::path& path) override {
+        save_hard_checkpoint(path, run_checkpoint_magic, *engine_, record_);
+    }
+
+    std::string log_header() const override {
+        return out_.log_header(growing_ ? ",list_rebuilds,packing_fraction,growth_pressure"
+                                        : ",list_rebuilds");
+    }
+
+    std::string log_row() override {
+        const auto& e = *engine_;
+        const LogRow row = out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters());
+        std::string line = row.csv + fmt::format(",{}", e.counters().list_rebuilds);
+        if (growing_)
+            line += fmt::format(",{:.10g},{:.10g}", e.packing_fraction(), e.growth().last_pressure);
+        progress(row.temperature, row.pressure, row.has_pressure);
+        return line + "\n";
+    }
+
+    void start(bool /*fresh*/) override {
         console_ << fmt::format(
-            "pedesis: {}D event-driven run, N = {}, box {}, eta = {:.4f}, output in {}\n", D, n,
-            box_text(engine_->box()), packing_fraction(engine_->lazy_particles(), engine_->box()),
-            o_.out_dir.string());
-        if (!o_.restart) {
-            log_row();
-            frame();
-        }
+            "pedesis: {}D event-driven run, N = {}, box {}, eta = {:.4f}, output in {}\n", D,
+            engine_->size(), box_text(engine_->box()),
+            packing_fraction(engine_->lazy_particles(), engine_->box()), o_.out_dir.string());
         wall_start_ = std::chrono::steady_clock::now();
         collisions_start_ = engine_->counters().pair_collisions;
-        const double li = c_.log_interval;
-        double next_log = next_multiple(engine_->time(), li);
-        double next_snap =
-            c_.snapshot_interval > 0 ? next_multiple(engine_->time(), c_.snapshot_interval) : t_end;
-        double next_ckpt = c_.checkpoint_interval > 0
-                               ? next_multiple(engine_->time(), c_.checkpoint_interval)
-                               : t_end;
-        StopReason reason = StopReason::time;
-        try {
-            while (true) {
-                limits.time = std::min({next_log, next_snap, next_ckpt, t_end});
-                reason = engine_->run(limits);
-                const double t = engine_->time();
-                if (reason == StopReason::grown) announce_growth_end();
-                const bool stop = (reason != StopReason::time && reason != StopReason::grown) ||
-                                  (reason == StopReason::grown && c_.stop_when_grown) || t >= t_end;
-                if (t >= next_log || stop || reason == StopReason::grown) {
-                    log_row();
-                    next_log = next_multiple(t, li);
-                }
-                if (c_.snapshot_interval > 0 && t >= next_snap && !stop) {
-                    frame();
-                    next_snap = next_multiple(t, c_.snapshot_interval);
-                }
-                if (c_.checkpoint_interval > 0 && t >= next_ckpt && !stop) {
-                    save_checkpoint(o_.out_dir / "checkpoint.bin", *engine_, state_);
-                    next_ckpt = next_multiple(t, c_.checkpoint_interval);
-                }
-                if (stop) break;
-            }
-        } catch (const RunError& e) {
-            // keep what is good: frames so far, the log, and the last checkpoint
-            out_.close();
-            throw RunError(std::string(e.what()) +
-                           " (the log, the frames and the last checkpoint written so far are in " +
-                           o_.out_dir.string() + ")");
+    }
+
+    void finish(const char* stopped_by) override {
+        const auto& e = *engine_;
+        out_.write_speed_histogram(e.lazy_particles());
+        nlohmann::json j = out_.summary(e.lazy_particles(), e.box(), e.time(), e.counters());
+        j["stopped_by"] = stopped_by;
+        if (growing_) {
+            const auto& g = e.growth();
+            j["growth"] = {{"growing", g.growing},
+                           {"ended_by", g.ended == GrowthEnd::pressure ? "pressure"
+                                        : g.ended == GrowthEnd::packing_fraction
+                                            ? "packing_fraction"
+                                            : "not ended"},
+                           {"packing_fraction", e.packing_fraction()},
+                           {"last_reduced_pressure", g.last_pressure},
+                           {"steps", g.steps}};
+            j["packing_fraction"] = e.packing_fraction(); // the radii of this instant
         }
-        finish(reason);
+        out_.write_summary(j);
+        console_ << fmt::format(
+            "pedesis: stopped by {} at t = {:.6g} after {} collisions ({:.3g} per particle)\n",
+            stopped_by, e.time(), e.counters().pair_collisions,
+            j["collisions_per_particle"].template get<double>());
+        out_.print_summary(console_, j, e.box());
+        console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
   private:
-    void log_row() {
-        const auto& e = *engine_;
-        const LogRow row = out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters());
-        std::string extra = fmt::format(",{}", e.counters().list_rebuilds);
-        if (growing_)
-            extra +=
-                fmt::format(",{:.10g},{:.10g}", e.packing_fraction(), e.growth().last_pressure);
-        out_.append_log(row.csv + extra + "\n");
-        progress(row.temperature, row.pressure, row.has_pressure);
+    static const char* reason_name(StopReason reason) {
+        return reason == StopReason::time         ? "time"
+               : reason == StopReason::collisions ? "collisions_per_particle"
+               : reason == StopReason::energy     ? "energy_fraction"
+               : reason == StopReason::grown      ? "grown"
+                                                  : "no more events";
     }
 
     void progress(double T, double P, bool has_pressure) {
@@ -165,59 +183,11 @@ template <int D> class EventRun {
             engine_->packing_fraction(), g.last_pressure);
     }
 
-    void frame() {
-        const ParticleStore<D> now = engine_->snapshot();
-        const auto& n = engine_->counters();
-        out_.frame(
-            Frame<D>{engine_->box(), now, engine_->time(), n.pair_collisions + n.wall_collisions});
-    }
-
-    void finish(StopReason reason) {
-        const auto& e = *engine_;
-        frame();
-        save_checkpoint(o_.out_dir / "checkpoint.bin", e, state_);
-        out_.write_speed_histogram(e.lazy_particles());
-        out_.close();
-        write_summary(reason);
-    }
-
-    void write_summary(StopReason reason) {
-        const auto& e = *engine_;
-        nlohmann::json j = out_.summary(e.lazy_particles(), e.box(), e.time(), e.counters());
-        const char* why = reason == StopReason::time         ? "time"
-                          : reason == StopReason::collisions ? "collisions_per_particle"
-                          : reason == StopReason::energy     ? "energy_fraction"
-                          : reason == StopReason::grown      ? "grown"
-                                                             : "no more events";
-        j["stopped_by"] = why;
-        if (growing_) {
-            const auto& g = e.growth();
-            j["growth"] = {{"growing", g.growing},
-                           {"ended_by", g.ended == GrowthEnd::pressure ? "pressure"
-                                        : g.ended == GrowthEnd::packing_fraction
-                                            ? "packing_fraction"
-                                            : "not ended"},
-                           {"packing_fraction", e.packing_fraction()},
-                           {"last_reduced_pressure", g.last_pressure},
-                           {"steps", g.steps}};
-            j["packing_fraction"] = e.packing_fraction(); // the radii of this instant
-        }
-        out_.write_summary(j);
-        console_ << fmt::format(
-            "pedesis: stopped by {} at t = {:.6g} after {} collisions ({:.3g} per particle)\n", why,
-            e.time(), e.counters().pair_collisions,
-            j["collisions_per_particle"].template get<double>());
-        out_.print_summary(console_, j, e.box());
-        console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
-    }
-
-    const RunConfig& c_;
-    const RunOptions& o_;
-    std::ostream& console_;
     std::unique_ptr<EventEngine<D>> engine_;
-    HardRunRecord<D> state_;
-    HardRunOutput<D> out_;
-    std::chrono::steady_clock::time_point wall_start_;
+    StopLimits limits_;
+    double t_end_ = std::numeric_limits<double>::infinity();
+    ParticleStore<D> snapshot_; // the positions of the last frame, all at one instant
+    std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
     std::optional<std::chrono::steady_clock::time_point> last_progress_;
     std::uint64_t collisions_start_ = 0;
     bool growing_ = false; // growth configured: log packing fraction and pressure
@@ -227,10 +197,7 @@ template <int D> class EventRun {
 
 void run_event_simulation(const RunConfig& config, const RunOptions& options,
                           std::ostream& console) {
-    if (config.dimension == 2)
-        EventRun<2>(config, options, console).execute();
-    else
-        EventRun<3>(config, options, console).execute();
+    run_hard_engine<EventRunEngine>(config, options, console);
 }
 
 } // namespace pedesis

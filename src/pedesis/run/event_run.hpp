@@ -3,6 +3,7 @@
 // writes the run directory: log.csv, trajectory.xyz, snapshots/, speed_histogram.csv,
 // checkpoint.bin, summary.json. Engines know nothing of files; this is where they meet.
 #include "pedesis/io/run_config.hpp"
+#include "pedesis/run/run_options.hpp"
 
 #include <filesystem>
 #include <optional>
@@ -10,12 +11,6 @@
 #include <string>
 
 namespace pedesis {
-
-struct RunOptions {
-    std::filesystem::path out_dir;
-    std::optional<std::filesystem::path> restart; // checkpoint to continue from
-    std::filesystem::path config_path;
-};
 
 void run_event_simulation(const RunConfig& config, const RunOptions& options,
                           std::ostream& console);

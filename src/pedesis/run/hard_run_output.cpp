@@ -1,12 +1,10 @@
 #include "pedesis/run/hard_run_output.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
-#include "pedesis/io/tutorial_json.hpp"
-#include "pedesis/io/xyz_writer.hpp"
 #include "pedesis/observe/pressure.hpp"
 #include "pedesis/observe/theory.hpp"
-#include "pedesis/run/run_directory.hpp"
 
 #include <fmt/format.h>
 
@@ -51,16 +49,13 @@ template <int D> void HardRunRecord<D>::load(std::istream& in) {
     histogram.load(in);
 }
 
-template <int D> void HardRunOutput<D>::open(const std::string& extra_columns) {
-    prepare_run_directory(o_.out_dir, o_.config_path, {"summary.json", "speed_histogram.csv"});
-    log_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "log.csv");
+template <int D> std::string HardRunOutput<D>::log_header(const std::string& extra_columns) const {
     std::string header = "time,collisions,collisions_per_particle,wall_collisions,kinetic_energy,"
                          "energy_fraction,temperature";
     for (const auto& s : c_.species)
         header += ",temperature_" + s.name + ",kinetic_energy_" + s.name;
-    header += ",pressure,pressure_ideal,compressibility,mean_free_time" + extra_columns + "\n";
-    log_->append(header);
-    frames_ = std::make_unique<FrameWriters<D>>(o_.out_dir, c_.formats);
+    return header + ",pressure,pressure_ideal,compressibility,mean_free_time" + extra_columns +
+           "\n";
 }
 
 template <int D>
@@ -98,15 +93,6 @@ LogRow HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, d
     return row;
 }
 
-template <int D> void HardRunOutput<D>::append_log(const std::string& line) {
-    log_->append(line);
-}
-
-template <int D> void HardRunOutput<D>::frame(const Frame<D>& f) {
-    frames_->write(f, record_.frames);
-    ++record_.frames;
-}
-
 template <int D> void HardRunOutput<D>::write_speed_histogram(const ParticleStore<D>& final_state) {
     SpeedHistogram histogram = record_.histogram;
     if (!c_.histogram_start) histogram.add(final_state);
@@ -118,11 +104,6 @@ template <int D> void HardRunOutput<D>::write_speed_histogram(const ParticleStor
     }
     write_file_atomically(o_.out_dir / "speed_histogram.csv",
                           [&](std::ostream& out) { histogram.write_csv(out, D, names, masses); });
-}
-
-template <int D> void HardRunOutput<D>::close() {
-    if (log_) log_->commit();
-    if (frames_) frames_->commit();
 }
 
 template <int D>
@@ -212,10 +193,6 @@ template <int D> double packing_fraction(const ParticleStore<D>& p, const Box<D>
         v += D == 2 ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
     }
     return v / box.volume();
-}
-
-double next_multiple(double t, double interval) {
-    return (std::floor(t / interval + 1e-9) + 1.0) * interval;
 }
 
 template <int D>

@@ -1,17 +1,15 @@
 #pragma once
-// The run directory of the two hard-particle engines, event and stepped, so that a plot
-// or a movie made from one works for the other: log.csv with the thermodynamic columns
-// both share, trajectory.xyz and snapshots/, speed_histogram.csv, and the common part of
-// summary.json and of the printed summary. Each driver adds its own columns and keys.
+// What the two hard-particle engines, event and stepped, measure alike, so that a plot
+// made from one run works for the other: the log.csv columns both share, the speed
+// histogram, and the common part of summary.json and of the printed summary. Each
+// engine's run adds its own columns and keys; the Simulation writes the files.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_engine.hpp" // EventCounters: the running totals of both engines
-#include "pedesis/io/atomic_file.hpp"
-#include "pedesis/io/frame_writers.hpp"
 #include "pedesis/io/run_config.hpp"
 #include "pedesis/observe/speed_histogram.hpp"
 #include "pedesis/observe/thermo.hpp"
-#include "pedesis/run/event_run.hpp" // RunOptions
+#include "pedesis/run/run_options.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -55,25 +53,17 @@ template <int D> class HardRunOutput {
     HardRunOutput(const RunConfig& c, const RunOptions& o, HardRunRecord<D>& record)
         : c_(c), o_(o), record_(record) {}
 
-    // Creates the directory, removes an earlier run's results, copies the config, and
-    // starts log.csv with the shared columns followed by `extra_columns` (",a,b").
-    void open(const std::string& extra_columns);
+    // The header of log.csv: the shared columns followed by `extra_columns` (",a,b").
+    std::string log_header(const std::string& extra_columns) const;
 
     // Measures a row at time t (velocities of p must be current), samples the speed
     // histogram if asked, and moves the record on. The caller appends its own columns.
     LogRow measure(const ParticleStore<D>& p, const Box<D>& box, double t,
                    const EventCounters<D>& counters);
-    void append_log(const std::string& line);
-
-    // A frame (positions and velocities current) in every format the config asks for.
-    void frame(const Frame<D>& f);
 
     // speed_histogram.csv from the samples, plus `final_state` when the histogram is of
     // the final state only. Not in the record, so a continued run does not count it twice.
     void write_speed_histogram(const ParticleStore<D>& final_state);
-
-    // Gives the log and the trajectory their final names (also for a stopped run).
-    void close();
 
     // The summary fields both engines share: temperatures, run-averaged pressure against
     // the ideal gas and the hard-disk / hard-sphere equation of state, collisions.
@@ -87,8 +77,6 @@ template <int D> class HardRunOutput {
     const RunConfig& c_;
     const RunOptions& o_;
     HardRunRecord<D>& record_;
-    std::unique_ptr<AtomicAppendFile> log_;
-    std::unique_ptr<FrameWriters<D>> frames_;
 };
 
 // "30w x 20p": the box for the first printed line.
@@ -96,9 +84,6 @@ template <int D> std::string box_text(const Box<D>& box);
 
 // Volume fraction of the particles in the box.
 template <int D> double packing_fraction(const ParticleStore<D>& p, const Box<D>& box);
-
-// The first multiple of `interval` after t (a grid anchored at t = 0).
-double next_multiple(double t, double interval);
 
 // Throws InputError if a checkpoint's species or box differ from the config's.
 template <int D>

@@ -7,14 +7,14 @@
 
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <sstream>
+#include <vector>
 
 namespace pedesis {
 
 inline void prepare_run_directory(const std::filesystem::path& out_dir,
                                   const std::filesystem::path& config_path,
-                                  std::initializer_list<const char*> stale_results) {
+                                  const std::vector<const char*>& stale_results) {
     std::error_code ec;
     std::filesystem::create_directories(out_dir / "snapshots", ec);
     if (ec)

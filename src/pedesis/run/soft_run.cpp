@@ -2,10 +2,9 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
-#include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/soft_observables.hpp"
 #include "pedesis/observe/thermo.hpp"
-#include "pedesis/run/run_directory.hpp"
+#include "pedesis/run/simulation.hpp"
 #include "pedesis/run/soft_checkpoint.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/build_system.hpp"
@@ -32,12 +31,11 @@ std::vector<Species> species_table(const RunConfig& c) {
     return t;
 }
 
-template <int D> class SoftRun {
+// The soft/active engine (state, evolver, plug-ins) as the Simulation drives it.
+template <int D> class SoftRunEngine final : public RunEngine<D> {
   public:
-    SoftRun(const RunConfig& c, const RunOptions& o, std::ostream& console)
-        : c_(complete_from_initial_file<D>(c)), o_(o), console_(console) {}
-
-    void execute() {
+    SoftRunEngine(const RunConfig& c, const RunOptions& o, std::ostream& console)
+        : c_(complete_from_initial_file<D>(c)), o_(o), console_(console) {
         for (std::size_t a = 0; a < c_.periodic.size(); ++a)
             if (!c_.periodic[a])
                 throw InputError(c_.file + ": [box] boundary: the " + c_.dynamics +
@@ -66,82 +64,45 @@ template <int D> class SoftRun {
         // exists; a restored run has its list already (building now could rebuild it at
         // another point of the step than the continuous run did)
         if (!o_.restart) evolver_->neighbor_list();
-        prepare_directory();
-
-        console_ << fmt::format(
-            "pedesis: {}D {} run, N = {}, box {}, dt = {:g}, {} steps, list cutoff {:g} + "
-            "skin {:g}, output in {}\n",
-            D, c_.dynamics, state_.size(), box_text(), c_.dt, c_.steps, evolver_->list_cutoff(),
-            evolver_->skin(), o_.out_dir.string());
-        if (!o_.restart) {
-            evolver_->compute_forces(); // so that frame 0 shows them; the step reuses them
-            log_row();
-            frame();
-        }
-        wall_start_ = std::chrono::steady_clock::now();
-        step_start_ = state_.step;
-        time_start_ = state_.time;
-        try {
-            while (state_.step < c_.steps) {
-                evolver_->evolve(c_.dt);
-                // a multiple of dt, not a running sum: t = 10 after 1000 steps of 0.01
-                state_.time = time_start_ + static_cast<double>(state_.step - step_start_) * c_.dt;
-                const std::uint64_t k = state_.step;
-                if (k % c_.log_every == 0 || k == c_.steps) log_row();
-                if (c_.snapshot_every && k % c_.snapshot_every == 0 && k != c_.steps) frame();
-                if (c_.checkpoint_every && k % c_.checkpoint_every == 0 && k != c_.steps)
-                    save_soft_checkpoint(o_.out_dir / "checkpoint.bin", state_, *evolver_, book_);
-            }
-        } catch (const RunError& e) {
-            // the state is broken: keep what was written while it was good
-            close_streams();
-            if (frames_written_ == 0)
-                throw RunError(fmt::format(
-                    "{} (no snapshot was written by this run; the last good state is the "
-                    "checkpoint it started from, {})",
-                    e.what(), o_.restart ? o_.restart->string() : std::string("-")));
-            throw RunError(fmt::format(
-                "{} (the last good snapshot is frame {} at step {}; it, the log and the last "
-                "checkpoint are in {})",
-                e.what(), book_.frames - 1, last_frame_step_, o_.out_dir.string()));
-        }
-        finish();
     }
 
-  private:
-    // The plug-ins say what the logs need: an overdamped position integrator (its bath
-    // temperature gives the ideal-gas pressure) and the forces' swim pressure.
-    void read_observable_parameters(const std::vector<Species>& table) {
-        overdamped_ = nullptr;
-        for (const auto& i : evolver_->integrators())
-            if (i->overdamped_positions()) overdamped_ = i.get();
-        if (overdamped_) {
-            bath_T_.resize(table.size());
-            for (std::size_t s = 0; s < table.size(); ++s)
-                bath_T_[s] = overdamped_->bath_temperature(s, table.size());
+    Schedule schedule() const {
+        return {Trigger::every_steps(c_.log_every),
+                c_.snapshot_every ? Trigger::every_steps(c_.snapshot_every) : Trigger::never(),
+                c_.checkpoint_every ? Trigger::every_steps(c_.checkpoint_every) : Trigger::never()};
+    }
+
+    std::uint64_t step() const override { return state_.step; }
+    double time() const override { return state_.time; }
+
+    Advance advance(std::uint64_t until_step, double /*until_time*/) override {
+        const std::uint64_t target = std::min<std::uint64_t>(until_step, c_.steps);
+        while (state_.step < target) {
+            evolver_->evolve(c_.dt);
+            // a multiple of dt, not a running sum: t = 10 after 1000 steps of 0.01
+            state_.time = time_start_ + static_cast<double>(state_.step - step_start_) * c_.dt;
         }
+        return {state_.step >= c_.steps ? "steps" : nullptr, false};
     }
 
-    std::string box_text() const {
-        std::string s;
-        for (int a = 0; a < D; ++a)
-            s += fmt::format("{}{:g}", a ? " x " : "", state_.box.length(a));
-        return s;
+    Frame<D> frame() override { return state_.frame(); }
+    std::uint64_t frames() const override { return book_.frames; }
+    void frame_written() override { ++book_.frames; }
+
+    void save_checkpoint(const std::filesystem::path& path) override {
+        save_soft_checkpoint(path, state_, *evolver_, book_);
     }
 
-    void prepare_directory() {
-        prepare_run_directory(o_.out_dir, o_.config_path, {"summary.json"});
-        log_ = std::make_unique<AtomicAppendFile>(o_.out_dir / "log.csv");
+    std::vector<const char*> stale_results() const override { return {"summary.json"}; }
+
+    std::string log_header() const override {
         std::string header = "step,time,polar_order,msd,potential_energy,";
         if (inertial()) header += "kinetic_energy,temperature,";
         header += "pressure,pressure_ideal,pressure_virial,pressure_active,list_rebuilds\n";
-        log_->append(header);
-        frames_ = std::make_unique<FrameWriters<D>>(o_.out_dir, c_.formats);
+        return header;
     }
 
-    bool inertial() const { return overdamped_ == nullptr; }
-
-    void log_row() {
+    std::string log_row() override {
         const auto& s = state_;
         const PairTotals pair = evolver_->pair_totals();
         const double V = s.box.volume();
@@ -165,7 +126,6 @@ template <int D> class SoftRun {
         if (inertial()) row += fmt::format("{:.10g},{:.10g},", k.total_kinetic, k.temperature());
         row += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{}\n", pressure, ideal, virial, active,
                            evolver_->list_builds());
-        log_->append(row);
         if (s.step > 0) {
             ++book_.samples;
             book_.sum_pressure += pressure;
@@ -173,42 +133,22 @@ template <int D> class SoftRun {
             book_.sum_temperature += k.temperature();
         }
         progress(order, pressure);
+        return row;
     }
 
-    void progress(double order, double pressure) {
-        if (!c_.progress) return;
-        const auto now = std::chrono::steady_clock::now();
-        if (last_progress_ && now - *last_progress_ < std::chrono::seconds(1)) return;
-        last_progress_ = now;
-        console_ << fmt::format("  step {:<10} t = {:<10.5g} polar order = {:<8.4f} P = {:<10.5g} "
-                                "{:.3g} particle-steps/s\n",
-                                state_.step, state_.time, order, pressure, rate());
+    void start(bool fresh) override {
+        console_ << fmt::format(
+            "pedesis: {}D {} run, N = {}, box {}, dt = {:g}, {} steps, list cutoff {:g} + "
+            "skin {:g}, output in {}\n",
+            D, c_.dynamics, state_.size(), box_text(), c_.dt, c_.steps, evolver_->list_cutoff(),
+            evolver_->skin(), o_.out_dir.string());
+        if (fresh) evolver_->compute_forces(); // so that frame 0 shows them; the step reuses them
+        wall_start_ = std::chrono::steady_clock::now();
+        step_start_ = state_.step;
+        time_start_ = state_.time;
     }
 
-    double rate() const {
-        const double wall =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
-        return wall > 0 ? static_cast<double>(state_.step - step_start_) *
-                              static_cast<double>(state_.size()) / wall
-                        : 0.0;
-    }
-
-    void frame() {
-        frames_->write(state_.frame(), book_.frames);
-        ++book_.frames;
-        ++frames_written_;
-        last_frame_step_ = state_.step;
-    }
-
-    void close_streams() {
-        if (log_) log_->commit();
-        if (frames_) frames_->commit();
-    }
-
-    void finish() {
-        if (frames_written_ == 0 || last_frame_step_ != state_.step) frame();
-        save_soft_checkpoint(o_.out_dir / "checkpoint.bin", state_, *evolver_, book_);
-        close_streams();
+    void finish(const char* /*stopped_by*/) override {
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
         const double rate_now = rate();
@@ -247,6 +187,49 @@ template <int D> class SoftRun {
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
+    const std::vector<std::string>& formats() const { return c_.formats; }
+
+  private:
+    // The plug-ins say what the logs need: an overdamped position integrator (its bath
+    // temperature gives the ideal-gas pressure) and the forces' swim pressure.
+    void read_observable_parameters(const std::vector<Species>& table) {
+        overdamped_ = nullptr;
+        for (const auto& i : evolver_->integrators())
+            if (i->overdamped_positions()) overdamped_ = i.get();
+        if (overdamped_) {
+            bath_T_.resize(table.size());
+            for (std::size_t s = 0; s < table.size(); ++s)
+                bath_T_[s] = overdamped_->bath_temperature(s, table.size());
+        }
+    }
+
+    std::string box_text() const {
+        std::string s;
+        for (int a = 0; a < D; ++a)
+            s += fmt::format("{}{:g}", a ? " x " : "", state_.box.length(a));
+        return s;
+    }
+
+    bool inertial() const { return overdamped_ == nullptr; }
+
+    void progress(double order, double pressure) {
+        if (!c_.progress) return;
+        const auto now = std::chrono::steady_clock::now();
+        if (last_progress_ && now - *last_progress_ < std::chrono::seconds(1)) return;
+        last_progress_ = now;
+        console_ << fmt::format("  step {:<10} t = {:<10.5g} polar order = {:<8.4f} P = {:<10.5g} "
+                                "{:.3g} particle-steps/s\n",
+                                state_.step, state_.time, order, pressure, rate());
+    }
+
+    double rate() const {
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+        return wall > 0 ? static_cast<double>(state_.step - step_start_) *
+                              static_cast<double>(state_.size()) / wall
+                        : 0.0;
+    }
+
     const RunConfig c_;
     const RunOptions& o_;
     std::ostream& console_;
@@ -256,24 +239,26 @@ template <int D> class SoftRun {
     const Integrator<D>* overdamped_ = nullptr;
     std::vector<double> bath_T_; // per species, of the overdamped integrator
     const Momentum momentum_ = momentum_of(c_);
-    std::unique_ptr<AtomicAppendFile> log_;
-    std::unique_ptr<FrameWriters<D>> frames_;
-    std::uint64_t last_frame_step_ = 0;
-    std::uint64_t frames_written_ = 0; // by this invocation (a restart starts at 0)
     std::uint64_t step_start_ = 0;
     double time_start_ = 0.0;
     std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
     std::optional<std::chrono::steady_clock::time_point> last_progress_;
 };
 
+template <int D>
+void run_soft(const RunConfig& config, const RunOptions& options, std::ostream& console) {
+    SoftRunEngine<D> engine(config, options, console);
+    Simulation<D>(engine, engine.schedule(), engine.formats(), options).run();
+}
+
 } // namespace
 
 void run_soft_simulation(const RunConfig& config, const RunOptions& options,
                          std::ostream& console) {
     if (config.dimension == 2)
-        SoftRun<2>(config, options, console).execute();
+        run_soft<2>(config, options, console);
     else
-        SoftRun<3>(config, options, console).execute();
+        run_soft<3>(config, options, console);
 }
 
 } // namespace pedesis

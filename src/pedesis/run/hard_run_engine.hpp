@@ -1,0 +1,56 @@
+#pragma once
+// What the event and stepped engines' runs share: a time-grid schedule from [output],
+// the run record kept in the checkpoint (frame numbers, pressure integrals, the speed
+// histogram) and the files of a hard-particle run directory.
+#include "pedesis/io/run_config.hpp"
+#include "pedesis/run/hard_run_output.hpp"
+#include "pedesis/run/run_engine.hpp"
+#include "pedesis/run/run_options.hpp"
+#include "pedesis/run/simulation.hpp"
+
+#include <ostream>
+
+namespace pedesis {
+
+template <int D> class HardRunEngine : public RunEngine<D> {
+  public:
+    HardRunEngine(const RunConfig& c, const RunOptions& o, std::ostream& console)
+        : c_(c), o_(o), console_(console), out_(c, o, record_) {}
+
+    Schedule schedule() const {
+        return {Trigger::every_time(c_.log_interval),
+                c_.snapshot_interval > 0 ? Trigger::every_time(c_.snapshot_interval)
+                                         : Trigger::never(),
+                c_.checkpoint_interval > 0 ? Trigger::every_time(c_.checkpoint_interval)
+                                           : Trigger::never()};
+    }
+    const std::vector<std::string>& formats() const { return c_.formats; }
+
+    std::uint64_t frames() const override { return record_.frames; }
+    void frame_written() override { ++record_.frames; }
+    std::vector<const char*> stale_results() const override {
+        return {"summary.json", "speed_histogram.csv"};
+    }
+
+  protected:
+    const RunConfig& c_;
+    const RunOptions& o_;
+    std::ostream& console_;
+    HardRunRecord<D> record_;
+    HardRunOutput<D> out_;
+};
+
+// Runs a hard-particle engine's run (EventRunEngine, SteppedRunEngine) in 2D or 3D.
+template <template <int> class Engine>
+void run_hard_engine(const RunConfig& config, const RunOptions& options, std::ostream& console) {
+    auto run = [&]<int D>() {
+        Engine<D> engine(config, options, console);
+        Simulation<D>(engine, engine.schedule(), engine.formats(), options).run();
+    };
+    if (config.dimension == 2)
+        run.template operator()<2>();
+    else
+        run.template operator()<3>();
+}
+
+} // namespace pedesis

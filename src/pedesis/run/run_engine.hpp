@@ -1,0 +1,61 @@
+#pragma once
+// What the one run loop (simulation.hpp) needs of an engine: advance, the clock, a frame
+// to write, the log, the checkpoint and the end of a run. Each engine's implementation
+// (run/event_run.cpp, run/stepped_run.cpp, run/soft_run.cpp) builds or restores its
+// engine from the config and keeps what the run directory accumulates; the loop, the
+// triggers, the frames, the failure path and the order of the files are the
+// Simulation's, written once.
+#include "pedesis/core/frame.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace pedesis {
+
+// What one advance ended with.
+struct Advance {
+    const char* stopped_by = nullptr; // a [run] stop condition was met: its name
+    bool log_now = false;             // the log must show this instant (growth ended)
+};
+
+template <int D> class RunEngine {
+  public:
+    virtual ~RunEngine() = default;
+
+    virtual std::uint64_t step() const = 0;
+    virtual double time() const = 0;
+
+    // Advances to the first of: step `until_step`, time `until_time`, a stop condition of
+    // the config. It may return earlier (the stepped engine returns after every step);
+    // the Simulation then asks again.
+    virtual Advance advance(std::uint64_t until_step, double until_time) = 0;
+
+    // The current state, valid until the next call that changes the engine.
+    virtual Frame<D> frame() = 0;
+
+    // Frames written so far by this run and the runs it continues (numbering survives a
+    // restart through the checkpoint).
+    virtual std::uint64_t frames() const = 0;
+    virtual void frame_written() = 0;
+
+    // The exact state and what the run directory accumulates, for --restart.
+    virtual void save_checkpoint(const std::filesystem::path& path) = 0;
+
+    // Results of an earlier run in the directory that this run will write anew and that
+    // must not pass for its own meanwhile (summary.json, ...).
+    virtual std::vector<const char*> stale_results() const = 0;
+    // log.csv: the header line and, measured now, one row (each with its line end).
+    virtual std::string log_header() const = 0;
+    virtual std::string log_row() = 0;
+
+    // Called once before the loop: the first printed line, and for a fresh run whatever
+    // frame 0 must show (the soft engine computes the initial forces).
+    virtual void start(bool fresh) = 0;
+    // The end of a finished run, after the last frame and checkpoint: the files only the
+    // end writes (speed histogram, summary.json) and the printed summary.
+    virtual void finish(const char* stopped_by) = 0;
+};
+
+} // namespace pedesis

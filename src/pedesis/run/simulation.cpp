@@ -1,0 +1,105 @@
+#include "pedesis/run/simulation.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/run/run_directory.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace pedesis {
+
+template <int D>
+Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, std::vector<std::string> formats,
+                          const RunOptions& options)
+    : engine_(engine), schedule_(std::move(schedule)), formats_(std::move(formats)),
+      options_(options) {}
+
+template <int D> void Simulation<D>::run() {
+    const auto& dir = options_.out_dir;
+    const std::vector<const char*> stale = engine_.stale_results();
+    prepare_run_directory(dir, options_.config_path, stale);
+    log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
+    log_->append(engine_.log_header());
+    frames_ = std::make_unique<FrameWriters<D>>(dir, formats_);
+
+    const bool fresh = !options_.restart;
+    engine_.start(fresh);
+    // a restarted run writes nothing at its start: the run it continues did
+    if (fresh) {
+        log_->append(engine_.log_row());
+        write_frame();
+    }
+    for (Trigger* t : {&schedule_.log, &schedule_.frames, &schedule_.checkpoint})
+        t->schedule(engine_.step(), engine_.time());
+
+    const char* stopped_by = nullptr;
+    try {
+        while (!stopped_by) {
+            std::uint64_t until_step = std::numeric_limits<std::uint64_t>::max();
+            double until_time = std::numeric_limits<double>::infinity();
+            for (const Trigger* t : {&schedule_.log, &schedule_.frames, &schedule_.checkpoint}) {
+                until_step = std::min(until_step, t->next_step());
+                until_time = std::min(until_time, t->next_time());
+            }
+            const Advance a = engine_.advance(until_step, until_time);
+            stopped_by = a.stopped_by;
+            const std::uint64_t step = engine_.step();
+            const double time = engine_.time();
+            // the end of the run always has a log row; its frame and checkpoint come below
+            if (schedule_.log.due(step, time) || stopped_by || a.log_now) {
+                log_->append(engine_.log_row());
+                schedule_.log.schedule(step, time);
+            }
+            if (stopped_by) break;
+            if (schedule_.frames.due(step, time)) {
+                write_frame();
+                schedule_.frames.schedule(step, time);
+            }
+            if (schedule_.checkpoint.due(step, time)) {
+                engine_.save_checkpoint(dir / "checkpoint.bin");
+                schedule_.checkpoint.schedule(step, time);
+            }
+        }
+    } catch (const RunError& e) {
+        // the state is broken: keep what was written while it was good
+        close();
+        throw RunError(std::string(e.what()) + failure_note());
+    }
+
+    if (frames_this_run_ == 0 || last_frame_step_ != engine_.step() ||
+        last_frame_time_ != engine_.time())
+        write_frame();
+    engine_.save_checkpoint(dir / "checkpoint.bin");
+    close();
+    engine_.finish(stopped_by);
+}
+
+template <int D> void Simulation<D>::write_frame() {
+    frames_->write(engine_.frame(), engine_.frames());
+    engine_.frame_written();
+    ++frames_this_run_;
+    last_frame_step_ = engine_.step();
+    last_frame_time_ = engine_.time();
+}
+
+template <int D> void Simulation<D>::close() {
+    if (log_) log_->commit();
+    if (frames_) frames_->commit();
+}
+
+template <int D> std::string Simulation<D>::failure_note() const {
+    if (frames_this_run_ == 0)
+        return fmt::format(" (no snapshot was written by this run; the last good state is the "
+                           "checkpoint it started from, {}; the log is in {})",
+                           options_.restart ? options_.restart->string() : std::string("-"),
+                           options_.out_dir.string());
+    return fmt::format(" (the last good snapshot is frame {} at t = {:.6g}; it, the log and the "
+                       "last checkpoint are in {})",
+                       engine_.frames() - 1, last_frame_time_, options_.out_dir.string());
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+
+} // namespace pedesis
