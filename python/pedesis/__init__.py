@@ -28,25 +28,14 @@ __all__ = [
     "BrownianRotIntegrator", "LangevinIntegrator", "NVEIntegrator", "builder",
 ]
 
-# Python class name of each catalogue entry (the config names them by `name`).
-_CLASS_NAMES = {
-    "harmonic": "HarmonicForce",
-    "wca": "WcaForce",
-    "lj": "LjForce",
-    "self_propulsion": "SelfPropulsion",
-    "polar_align": "PolarAlign",
-    "brownian": "BrownianIntegrator",
-    "brownian_rotation": "BrownianRotIntegrator",
-    "langevin": "LangevinIntegrator",
-    "nve": "NVEIntegrator",
-}
-
-
 def _plugin_class(entry):
     """One Plugin subclass per catalogue entry, so that the C++ catalogue (the same one
     `pedesis run` reads configs with) stays the single list of terms and parameters."""
-    cls_name = _CLASS_NAMES[entry["name"]]
+    cls_name = entry["python_class"]
     keys = [p["key"] for p in entry["params"]]
+    options = [f["key"] for f in entry["flags"]]
+    if entry["pair_potential"]:
+        options += ["pairs", "mixing"]
 
     def __init__(self, system, *args, **kwargs):
         if len(args) > len(keys):
@@ -75,6 +64,11 @@ def _plugin_class(entry):
         need = "required" if p["required"] else "optional"
         per = "; a number, or a dict {species: number}" if p["per_species"] else ""
         lines.append(f"    {p['key']}: {p['meaning']} ({need}{per})")
+    for f in entry["flags"]:
+        lines.append(f"    {f['key']}: {f['meaning']} (optional; True or False)")
+    if entry["pair_potential"]:
+        lines += ["    pairs: values for pairs of species, {(\"A\", \"B\"): {parameter: number}}",
+                  "    mixing: \"geometric\" (default) or \"arithmetic\", for pairs not given"]
     lines += ["", f"Config equivalent: [[{entry['kind']}]] name = \"{entry['name']}\"."]
     params = [_inspect.Parameter("self", _inspect.Parameter.POSITIONAL_ONLY),
               _inspect.Parameter("system", _inspect.Parameter.POSITIONAL_OR_KEYWORD)]
@@ -82,6 +76,8 @@ def _plugin_class(entry):
         default = _inspect.Parameter.empty if p["required"] else None
         params.append(_inspect.Parameter(p["key"], _inspect.Parameter.POSITIONAL_OR_KEYWORD,
                                          default=default))
+    for key in options:
+        params.append(_inspect.Parameter(key, _inspect.Parameter.KEYWORD_ONLY, default=None))
     __init__.__signature__ = _inspect.Signature(params)
     __init__.__doc__ = "\n".join(lines)
     return type(cls_name, (Plugin,), {"__init__": __init__, "__repr__": __repr__,
@@ -89,7 +85,7 @@ def _plugin_class(entry):
 
 
 for _entry in _pedesis._catalogue:
-    globals()[_CLASS_NAMES[_entry["name"]]] = _plugin_class(_entry)
+    globals()[_entry["python_class"]] = _plugin_class(_entry)
 
 
 class Dump:

@@ -76,6 +76,30 @@ PluginParam python_param(const py::handle& value, const std::string& where) {
     return p;
 }
 
+// pairs={("A", "B"): {"epsilon": 1.5, "sigma": 0.8}, ...}: a pair potential's per-pair
+// values, as [[force.pairs]] gives them in a config.
+std::vector<PairValues> python_pairs(const py::handle& value, const std::string& where) {
+    if (!py::isinstance<py::dict>(value))
+        throw InputError(where + ": must be a dict {(species, species): {parameter: number}}");
+    std::vector<PairValues> out;
+    for (const auto& [k, v] : value.cast<py::dict>()) {
+        PairValues pv;
+        pv.where = where + "[" + py::repr(k).cast<std::string>() + "]";
+        try {
+            const auto names = k.cast<std::pair<std::string, std::string>>();
+            pv.a = names.first;
+            pv.b = names.second;
+            for (const auto& [key, x] : v.cast<py::dict>())
+                pv.values[key.cast<std::string>()] = x.cast<double>();
+        } catch (const py::cast_error&) {
+            throw InputError(pv.where +
+                             ": keys are (species, species), values {parameter: number}");
+        }
+        out.push_back(std::move(pv));
+    }
+    return out;
+}
+
 PluginKind kind_of(const std::string& kind) {
     if (kind == "force") return PluginKind::force;
     if (kind == "torque") return PluginKind::torque;
@@ -302,12 +326,23 @@ against the engine's catalogue: unknown, missing or out-of-range ones raise Inpu
         .def(py::init([](const std::string& kind, const std::string& name, const py::dict& params,
                          const std::string& label) {
                  std::map<std::string, PluginParam> given;
+                 std::map<std::string, bool> flags;
+                 std::vector<PairValues> pairs;
+                 std::string mixing = "geometric";
                  for (const auto& [k, v] : params) {
                      const auto key = k.cast<std::string>();
-                     given[key] = python_param(v, label + ": " + key);
+                     if (key == "pairs")
+                         pairs = python_pairs(v, label + ": pairs");
+                     else if (key == "mixing")
+                         mixing = v.cast<std::string>();
+                     else if (py::isinstance<py::bool_>(v))
+                         flags[key] = v.cast<bool>();
+                     else
+                         given[key] = python_param(v, label + ": " + key);
                  }
                  auto p = std::make_unique<PyPlugin>();
-                 p->spec = make_plugin_spec(kind_of(kind), name, std::move(given), label);
+                 p->spec = make_plugin_spec(kind_of(kind), name, std::move(given), label,
+                                            std::move(flags), std::move(pairs), mixing);
                  p->label = label;
                  return p;
              }),
@@ -396,9 +431,14 @@ blow-up) or to NaN raises RunError naming the particle.
             params.append(py::dict(py::arg("key") = p.key, py::arg("required") = p.required,
                                    py::arg("per_species") = p.per_species,
                                    py::arg("meaning") = p.meaning));
-        catalogue.append(py::dict(py::arg("kind") = kind_name(info.kind),
-                                  py::arg("name") = info.name, py::arg("params") = params,
-                                  py::arg("formula") = info.formula));
+        py::list flags;
+        for (const auto& f : info.flags)
+            flags.append(py::dict(py::arg("key") = f.key, py::arg("meaning") = f.meaning));
+        catalogue.append(
+            py::dict(py::arg("kind") = kind_name(info.kind), py::arg("name") = info.name,
+                     py::arg("python_class") = info.python_class, py::arg("params") = params,
+                     py::arg("flags") = flags, py::arg("pair_potential") = info.pair_potential,
+                     py::arg("formula") = info.formula));
     }
     m.attr("_catalogue") = catalogue;
 }

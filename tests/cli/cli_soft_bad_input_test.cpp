@@ -111,7 +111,8 @@ TEST_F(SoftBadInput, NanAnywhere) {
 
 TEST_F(SoftBadInput, PerSpeciesValuesMustNameTheSpecies) {
     expect_rejected(with("alpha = 1.0", "alpha = { B = 1.0 }"), {"force[1].alpha", "species 'A'"});
-    expect_rejected(with("k = 10.0", "k = { A = 10.0 }"), {"force[0].k", "one number for all"});
+    expect_rejected(with("k = 10.0", "k = { B = 10.0 }"), {"force[0].k", "species 'A'"});
+    expect_rejected(with("J = 1.0", "J = { A = 1.0 }"), {"torque[0].J", "one number for all"});
 }
 
 TEST_F(SoftBadInput, BoxTooSmallForTheCutoff) {

@@ -3,6 +3,11 @@
 // pair is evaluated once and added to both particles, in the list's colour order
 // (NeighborList::for_each_chunk), so forces are bit-identical whatever the number of
 // threads.
+//
+// Parameters may differ per pair of species (epsilon_AB, sigma_AB): the force holds one
+// evaluator per species pair, a symmetric table. When all entries are equal and all
+// radii too (one species, the common case) the loop takes one evaluator and never reads
+// a neighbour's species.
 #include "pedesis/soft/plugins.hpp"
 
 #include <algorithm>
@@ -10,26 +15,45 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace pedesis {
 
 template <int D, class Pair> class PairForce final : public ForceTerm<D> {
   public:
-    PairForce(std::string name, const Pair& pair) : name_(std::move(name)), pair_(pair) {}
+    // The same evaluator for every pair of species.
+    PairForce(std::string name, const Pair& pair)
+        : name_(std::move(name)), pairs_{pair}, species_(1) {}
+    // One evaluator per pair of `species` species: pairs[a * species + b], symmetric.
+    PairForce(std::string name, std::vector<Pair> pairs, std::size_t species)
+        : name_(std::move(name)), pairs_(std::move(pairs)), species_(species) {
+        if (pairs_.size() != species_ * species_ || species_ == 0)
+            throw std::invalid_argument("PairForce: the table must have species^2 entries");
+        for (std::size_t a = 0; a < species_; ++a)
+            for (std::size_t b = 0; b < a; ++b)
+                if (!(pairs_[a * species_ + b] == pairs_[b * species_ + a]))
+                    throw std::invalid_argument("PairForce: the table must be symmetric");
+    }
 
     std::string name() const override { return name_; }
-    const Pair& pair() const { return pair_; }
+    const Pair& pair(std::size_t a = 0, std::size_t b = 0) const { return pairs_[index(a, b)]; }
 
     double range(const SoftState<D>& s) const override {
         double max_radius = 0.0;
         for (const auto& sp : s.p.species_table) max_radius = std::max(max_radius, sp.radius);
-        return pair_.max_range(2.0 * max_radius);
+        double r = 0.0;
+        for (const Pair& p : pairs_) r = std::max(r, p.max_range(2.0 * max_radius));
+        return r;
     }
 
     void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const override {
         const auto& table = s.p.species_table;
+        check_species(table.size());
         bool uniform = true;
         for (const auto& sp : table) uniform = uniform && sp.radius == table[0].radius;
+        for (const Pair& p : pairs_) uniform = uniform && p == pairs_[0];
         if (uniform)
             add_rows<true>(s, nl);
         else
@@ -38,12 +62,14 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
 
     void add_totals(const SoftState<D>& s, const NeighborList<D>& nl,
                     PairTotals& t) const override {
+        check_species(s.p.species_table.size());
         for (std::size_t i = 0; i < s.size(); ++i) {
             for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it) {
                 const Vec<D> d = s.box.minimum_image(s.p.position[i] - s.p.position[*it]);
                 const double r2 = norm2(d);
                 double f_over_r, energy;
-                if (pair_.eval(r2, s.p.radius(i) + s.p.radius(*it), f_over_r, energy)) {
+                const Pair& pair = pairs_[index(s.p.species[i], s.p.species[*it])];
+                if (pair.eval(r2, s.p.radius(i) + s.p.radius(*it), f_over_r, energy)) {
                     t.energy += energy;
                     t.virial += f_over_r * r2;
                 }
@@ -65,9 +91,9 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
         const Vec<D>* pos = s.p.position.data();
         const std::uint16_t* sp = s.p.species.data();
         const Species* table = s.p.species_table.data();
-        double max_radius = 0.0;
-        for (const auto& t : s.p.species_table) max_radius = std::max(max_radius, t.radius);
-        const double rc = pair_.max_range(2.0 * max_radius);
+        const Pair* pairs = pairs_.data();
+        const std::size_t ns = species_;
+        const double rc = range(s);
         const double rc2 = rc * rc;
         Vec<D>* force = s.force.data();
         const Box<D>& box = s.box;
@@ -80,12 +106,14 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
             for (const std::uint32_t i : rows) {
                 const Vec<D> ri = pos[i];
                 const double rad_i = table[sp[i]].radius;
+                const Pair* pair_row = pairs + (Uniform || ns == 1 ? 0 : sp[i] * ns);
                 bool interior = true;
                 for (int a = 0; a < D; ++a) interior = interior && std::abs(ri[a]) < inner[a];
                 Vec<D> f{};
                 // plain arrays: a std::array of Vec would be zeroed for every row
                 double dbuf[chunk][D], r2buf[chunk], rsbuf[chunk];
                 std::uint32_t jbuf[chunk];
+                std::uint16_t sbuf[chunk]; // the neighbours' species (non-uniform path)
                 for (const std::uint32_t* it = nl.begin(i); it != nl.end(i);) {
                     const std::uint32_t* const stop =
                         it + std::min<std::ptrdiff_t>(chunk, nl.end(i) - it);
@@ -93,12 +121,14 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
                     if (interior)
                         for (; it != stop; ++it) {
                             const Vec<D> d = ri - pos[*it];
+                            if constexpr (!Uniform) sbuf[m] = sp[*it];
                             pack(d, *it, Uniform ? 0.0 : rad_i + table[sp[*it]].radius, rc2, dbuf,
                                  r2buf, rsbuf, jbuf, m);
                         }
                     else
                         for (; it != stop; ++it) {
                             const Vec<D> d = box.minimum_image(ri - pos[*it]);
+                            if constexpr (!Uniform) sbuf[m] = sp[*it];
                             pack(d, *it, Uniform ? 0.0 : rad_i + table[sp[*it]].radius, rc2, dbuf,
                                  r2buf, rsbuf, jbuf, m);
                         }
@@ -107,12 +137,14 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
                         // Every packed pair lies within the one range: F/r for all of them in
                         // a loop without branches (several pairs per SIMD instruction).
                         const double rsum_uniform = 2.0 * rad_i;
+                        const Pair& pair = pairs[0];
                         for (int q = 0; q < m; ++q)
-                            frbuf[q] = pair_.force_over_r(r2buf[q], rsum_uniform);
+                            frbuf[q] = pair.force_over_r(r2buf[q], rsum_uniform);
                     } else {
                         for (int q = 0; q < m; ++q) {
                             double energy;
-                            if (!pair_.eval(r2buf[q], rsbuf[q], frbuf[q], energy)) frbuf[q] = 0.0;
+                            const Pair& pair = pair_row[ns == 1 ? 0 : sbuf[q]];
+                            if (!pair.eval(r2buf[q], rsbuf[q], frbuf[q], energy)) frbuf[q] = 0.0;
                         }
                     }
                     // summed in list order; each neighbour gets the opposite force
@@ -141,8 +173,18 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
         m += r2 < rc2;
     }
 
+    std::size_t index(std::size_t a, std::size_t b) const {
+        return species_ == 1 ? 0 : a * species_ + b;
+    }
+    void check_species(std::size_t n) const {
+        if (species_ != 1 && species_ != n)
+            throw std::logic_error("PairForce: a table for " + std::to_string(species_) +
+                                   " species used with " + std::to_string(n));
+    }
+
     std::string name_;
-    Pair pair_;
+    std::vector<Pair> pairs_;
+    std::size_t species_;
 };
 
 } // namespace pedesis

@@ -25,6 +25,7 @@ struct HarmonicPair {
     double k = 10.0;
     double a = -1.0;
 
+    bool operator==(const HarmonicPair&) const = default;
     double range(double rsum) const { return a > 0.0 ? a : rsum; }
     double max_range(double max_rsum) const { return range(max_rsum); }
     // F/r for a pair inside the range (the pair loop filters by range first)
@@ -48,6 +49,7 @@ struct WcaPair {
     double epsilon = 1.0;
     double sigma = -1.0;
 
+    bool operator==(const WcaPair&) const = default;
     double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return std::pow(2.0, 1.0 / 6.0) * sig(max_rsum); }
     double force_over_r(double r2, double rsum) const {
@@ -65,15 +67,18 @@ struct WcaPair {
     }
 };
 
-// Lennard-Jones cut at `cutoff` sigma (2.5 by default, as LAMMPS' in.lj) and not
-// shifted, as LAMMPS' lj/cut without pair_modify shift: the energy jumps by
+// Lennard-Jones cut at `cutoff` sigma (2.5 by default, as LAMMPS' in.lj). Not shifted by
+// default, as LAMMPS' lj/cut without pair_modify shift: the energy jumps by
 // U(r_c) ~ -0.016 eps at the cutoff, the force is continuous enough for NVE at in.lj's
-// dt. With sigma <= 0, sigma = r_i + r_j.
+// dt. With `shift` the energy has U(r_c) subtracted, so it is continuous (HOOMD-blue's
+// mode "shift"); forces are the same. With sigma <= 0, sigma = r_i + r_j.
 struct LjPair {
     double epsilon = 1.0;
     double sigma = -1.0;
     double cutoff = 2.5;
+    bool shift = false;
 
+    bool operator==(const LjPair&) const = default;
     double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return cutoff * sig(max_rsum); }
     double force_over_r(double r2, double rsum) const {
@@ -87,6 +92,11 @@ struct LjPair {
         const double x6 = x2 * x2 * x2;
         f_over_r = lj_force_over_r(epsilon, s, r2);
         energy = 4.0 * epsilon * (x6 * x6 - x6);
+        if (shift) {
+            // U(r_c) = 4 eps (rc^-12 - rc^-6) in units of sigma, whatever sigma is
+            const double c6 = 1.0 / (cutoff * cutoff * cutoff * cutoff * cutoff * cutoff);
+            energy -= 4.0 * epsilon * (c6 * c6 - c6);
+        }
         return true;
     }
 };

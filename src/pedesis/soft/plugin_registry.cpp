@@ -20,59 +20,154 @@ namespace {
 
 constexpr bool required = true, optional = false;
 constexpr bool per_species = true, shared = false;
+constexpr bool length = true;
+
+// Both dimensions' builders of a row, from one template lambda
+// []<int D>(Evolver<D>&, const PluginSpec&, const std::vector<Species>&, std::uint64_t).
+template <class F> std::pair<AddPlugin<2>, AddPlugin<3>> builders(F f) {
+    return {static_cast<AddPlugin<2>>(f), static_cast<AddPlugin<3>>(f)};
+}
+
+double uniform(const PluginSpec& spec, const std::string& key, double fallback) {
+    const auto it = spec.params.find(key);
+    return it == spec.params.end() ? fallback : *it->second.uniform;
+}
+
+// A pair force with one evaluator per species pair; make(value) builds the evaluator of
+// one pair from value(key, fallback), that pair's parameter.
+template <class Pair, int D, class Make>
+void add_pair_force(Evolver<D>& e, const PluginSpec& spec, const std::vector<Species>& species,
+                    Make make) {
+    const std::size_t n = species.size();
+    std::vector<Pair> table(n * n);
+    for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = 0; b < n; ++b)
+            table[a * n + b] = make([&](const char* key, double fallback) {
+                return pair_parameter(spec, key, species, a, b, fallback);
+            });
+    e.add_force(std::make_unique<PairForce<D, Pair>>(spec.name, std::move(table), n));
+}
+
+PluginInfo row(PluginInfo info, std::pair<AddPlugin<2>, AddPlugin<3>> add) {
+    info.add2 = add.first;
+    info.add3 = add.second;
+    return info;
+}
 
 } // namespace
 
 const std::vector<PluginInfo>& plugin_catalogue() {
     static const std::vector<PluginInfo> catalogue = {
-        {PluginKind::force,
-         "harmonic",
-         {{"k", required, ParamLimit::non_negative, shared, "spring constant"},
-          {"a", optional, ParamLimit::positive, shared,
-           "range; default: the contact distance r_i + r_j"}},
-         "F_ij = k (a - r_ij) r_ij/|r_ij| for r_ij < a; U = k (a - r_ij)^2 / 2"},
-        {PluginKind::force,
-         "wca",
-         {{"epsilon", required, ParamLimit::non_negative, shared, "energy scale"},
-          {"sigma", optional, ParamLimit::positive, shared,
-           "length scale; default: the contact distance r_i + r_j"}},
-         "U = 4 eps [(sigma/r)^12 - (sigma/r)^6] + eps for r < 2^(1/6) sigma"},
-        {PluginKind::force,
-         "lj",
-         {{"epsilon", required, ParamLimit::non_negative, shared, "energy scale"},
-          {"sigma", optional, ParamLimit::positive, shared,
-           "length scale; default: the contact distance r_i + r_j"},
-          {"cutoff", optional, ParamLimit::positive, shared,
-           "cutoff in units of sigma; default 2.5"}},
-         "U = 4 eps [(sigma/r)^12 - (sigma/r)^6] for r < cutoff sigma (not shifted)"},
-        {PluginKind::force,
-         "self_propulsion",
-         {{"alpha", required, ParamLimit::any, per_species, "active force magnitude"}},
-         "F_i = alpha n_i"},
-        {PluginKind::torque,
-         "polar_align",
-         {{"J", required, ParamLimit::any, shared, "alignment strength"},
-          {"a", required, ParamLimit::positive, shared, "alignment range"}},
-         "tau_i = J sum_{r_ij < a} n_i x n_j (2D: J sum sin(theta_j - theta_i))"},
-        {PluginKind::integrator,
-         "brownian",
-         {{"T", required, ParamLimit::non_negative, per_species, "temperature"},
-          {"gamma", required, ParamLimit::positive, per_species, "friction coefficient"}},
-         "r += dt F / gamma + sqrt(2 T dt / gamma) xi"},
-        {PluginKind::integrator,
-         "brownian_rotation",
-         {{"T", required, ParamLimit::non_negative, per_species,
-           "rotational temperature (D_r = T / gamma)"},
-          {"gamma", required, ParamLimit::positive, per_species, "rotational friction"}},
-         "theta += dt tau / gamma + sqrt(2 T dt / gamma) xi (3D: n rotated about the same "
-         "vector)"},
-        {PluginKind::integrator,
-         "langevin",
-         {{"T", required, ParamLimit::non_negative, per_species, "temperature"},
-          {"gamma", required, ParamLimit::positive, per_species,
-           "friction coefficient (force -gamma v)"}},
-         "m dv = F dt - gamma v dt + sqrt(2 gamma T) dW (BAOAB splitting)"},
-        {PluginKind::integrator, "nve", {}, "velocity Verlet: m dv/dt = F"},
+        row({PluginKind::force,
+             "harmonic",
+             "HarmonicForce",
+             {{"k", required, ParamLimit::non_negative, per_species, "spring constant"},
+              {"a", optional, ParamLimit::positive, per_species,
+               "range; default: the contact distance r_i + r_j", length}},
+             "F_ij = k (a - r_ij) r_ij/|r_ij| for r_ij < a; U = k (a - r_ij)^2 / 2",
+             true},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
+                               std::uint64_t) {
+                add_pair_force<HarmonicPair>(e, s, sp, [](auto value) {
+                    return HarmonicPair{value("k", 0.0), value("a", -1.0)};
+                });
+            })),
+        row({PluginKind::force,
+             "wca",
+             "WcaForce",
+             {{"epsilon", required, ParamLimit::non_negative, per_species, "energy scale"},
+              {"sigma", optional, ParamLimit::positive, per_species,
+               "length scale; default: the contact distance r_i + r_j", length}},
+             "U = 4 eps [(sigma/r)^12 - (sigma/r)^6] + eps for r < 2^(1/6) sigma",
+             true},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
+                               std::uint64_t) {
+                add_pair_force<WcaPair>(e, s, sp, [](auto value) {
+                    return WcaPair{value("epsilon", 0.0), value("sigma", -1.0)};
+                });
+            })),
+        row({PluginKind::force,
+             "lj",
+             "LjForce",
+             {{"epsilon", required, ParamLimit::non_negative, per_species, "energy scale"},
+              {"sigma", optional, ParamLimit::positive, per_species,
+               "length scale; default: the contact distance r_i + r_j", length},
+              {"cutoff", optional, ParamLimit::positive, shared,
+               "cutoff in units of sigma; default 2.5"}},
+             "U = 4 eps [(sigma/r)^12 - (sigma/r)^6] (- U(r_c) with shift) for r < cutoff sigma",
+             true,
+             {{"shift", "subtract U(r_c), so that the energy is continuous at the cutoff "
+                        "(default false, as LAMMPS' lj/cut)"}}},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
+                               std::uint64_t) {
+                const auto it = s.flags.find("shift");
+                const bool shift = it != s.flags.end() && it->second;
+                add_pair_force<LjPair>(e, s, sp, [shift](auto value) {
+                    return LjPair{value("epsilon", 0.0), value("sigma", -1.0), value("cutoff", 2.5),
+                                  shift};
+                });
+            })),
+        row({PluginKind::force,
+             "self_propulsion",
+             "SelfPropulsion",
+             {{"alpha", required, ParamLimit::any, per_species, "active force magnitude"}},
+             "F_i = alpha n_i"},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
+                               std::uint64_t) {
+                e.add_force(std::make_unique<SelfPropulsion<D>>(plugin_parameter(s, "alpha", sp)));
+            })),
+        row({PluginKind::torque,
+             "polar_align",
+             "PolarAlign",
+             {{"J", required, ParamLimit::any, shared, "alignment strength"},
+              {"a", required, ParamLimit::positive, shared, "alignment range"}},
+             "tau_i = J sum_{r_ij < a} n_i x n_j (2D: J sum sin(theta_j - theta_i))"},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>&,
+                               std::uint64_t) {
+                e.add_torque(
+                    std::make_unique<PolarAlign<D>>(uniform(s, "J", 0.0), uniform(s, "a", 0.0)));
+            })),
+        row({PluginKind::integrator,
+             "brownian",
+             "BrownianIntegrator",
+             {{"T", required, ParamLimit::non_negative, per_species, "temperature"},
+              {"gamma", required, ParamLimit::positive, per_species, "friction coefficient"}},
+             "r += dt F / gamma + sqrt(2 T dt / gamma) xi"},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
+                               std::uint64_t seed) {
+                e.add_integrator(std::make_unique<BrownianIntegrator<D>>(
+                    plugin_parameter(s, "T", sp), plugin_parameter(s, "gamma", sp), seed));
+            })),
+        row({PluginKind::integrator,
+             "brownian_rotation",
+             "BrownianRotIntegrator",
+             {{"T", required, ParamLimit::non_negative, per_species,
+               "rotational temperature (D_r = T / gamma)"},
+              {"gamma", required, ParamLimit::positive, per_species, "rotational friction"}},
+             "theta += dt tau / gamma + sqrt(2 T dt / gamma) xi (3D: n rotated about the same "
+             "vector)"},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
+                               std::uint64_t seed) {
+                e.add_integrator(std::make_unique<BrownianRotationIntegrator<D>>(
+                    plugin_parameter(s, "T", sp), plugin_parameter(s, "gamma", sp), seed));
+            })),
+        row({PluginKind::integrator,
+             "langevin",
+             "LangevinIntegrator",
+             {{"T", required, ParamLimit::non_negative, per_species, "temperature"},
+              {"gamma", required, ParamLimit::positive, per_species,
+               "friction coefficient (force -gamma v)"}},
+             "m dv = F dt - gamma v dt + sqrt(2 gamma T) dW (BAOAB splitting)"},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
+                               std::uint64_t seed) {
+                e.add_integrator(std::make_unique<LangevinIntegrator<D>>(
+                    plugin_parameter(s, "T", sp), plugin_parameter(s, "gamma", sp), seed));
+            })),
+        row({PluginKind::integrator, "nve", "NVEIntegrator", {}, "velocity Verlet: m dv/dt = F"},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec&, const std::vector<Species>&,
+                               std::uint64_t) {
+                e.add_integrator(std::make_unique<VelocityVerletIntegrator<D>>());
+            })),
     };
     return catalogue;
 }
@@ -125,10 +220,59 @@ void require_param(const PluginSpec& spec, const ParamInfo& p) {
                          p.key + " (" + p.meaning + ")");
 }
 
+const ParamInfo* param_info(const PluginInfo& info, const std::string& key) {
+    for (const ParamInfo& p : info.params)
+        if (key == p.key) return &p;
+    return nullptr;
+}
+
+// The options only a pair potential has: per-pair values and the mixing rule.
+void check_pair_options(const PluginSpec& spec, const PluginInfo& info) {
+    if (!info.pair_potential) return;
+    if (std::find_if(std::begin(mixing_rules), std::end(mixing_rules),
+                     [&](const char* r) { return spec.mixing == r; }) == std::end(mixing_rules))
+        throw InputError(spec.where + ": " + spec.name + ": mixing '" + spec.mixing +
+                         "' is not a mixing rule (known: geometric, arithmetic)");
+    for (std::size_t k = 0; k < spec.pairs.size(); ++k) {
+        const PairValues& pv = spec.pairs[k];
+        if (pv.values.empty())
+            throw InputError(pv.where + ": the pair " + pv.a + "-" + pv.b +
+                             " gives no parameter of " + spec.name);
+        for (const auto& [key, v] : pv.values) {
+            const ParamInfo* p = param_info(info, key);
+            if (!p)
+                throw InputError(pv.where + ": " + spec.name + " has no parameter '" + key + "'");
+            check_limit(v, p->limit, pv.where + " (" + key + ")");
+        }
+        for (std::size_t j = 0; j < k; ++j) {
+            const PairValues& other = spec.pairs[j];
+            if ((other.a == pv.a && other.b == pv.b) || (other.a == pv.b && other.b == pv.a))
+                throw InputError(pv.where + ": the pair " + pv.a + "-" + pv.b +
+                                 " is given twice (also at " + other.where + ")");
+        }
+    }
+}
+
+PairValues read_pair_values(ConfigTable& t, const PluginInfo& info) {
+    PairValues pv;
+    pv.where = t.where("species");
+    const auto names = t.strings("species", 2);
+    if (!names || names->size() != 2)
+        throw InputError(pv.where + ": each [[force.pairs]] needs species = [\"A\", \"B\"]");
+    pv.a = (*names)[0];
+    pv.b = (*names)[1];
+    for (const ParamInfo& p : info.params)
+        if (t.has(p.key)) pv.values[p.key] = *t.number(p.key);
+    t.finish();
+    return pv;
+}
+
 } // namespace
 
 PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
-                            std::map<std::string, PluginParam> given, const std::string& where) {
+                            std::map<std::string, PluginParam> given, const std::string& where,
+                            std::map<std::string, bool> flags, std::vector<PairValues> pairs,
+                            const std::string& mixing) {
     PluginSpec spec;
     spec.kind = kind;
     spec.name = name;
@@ -159,6 +303,18 @@ PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
                          "' has no parameter '" + given.begin()->first +
                          "' (it has: " + (keys.empty() ? std::string("none") : keys) + ")");
     }
+    for (const auto& [key, on] : flags) {
+        if (std::none_of(info.flags.begin(), info.flags.end(),
+                         [&](const FlagInfo& f) { return key == f.key; }))
+            throw InputError(where + ": " + kind_name(kind) + " '" + name + "' has no option '" +
+                             key + "'");
+        spec.flags[key] = on;
+    }
+    if (!info.pair_potential && (!pairs.empty() || mixing != "geometric"))
+        throw InputError(where + ": " + name + " is not a pair potential: no pairs or mixing");
+    spec.pairs = std::move(pairs);
+    spec.mixing = mixing;
+    check_pair_options(spec, info);
     return spec;
 }
 
@@ -195,6 +351,14 @@ PluginSpec read_plugin(ConfigTable& t, PluginKind kind) {
         }
         spec.params[p.key] = value;
     }
+    for (const FlagInfo& f : info.flags)
+        if (t.has(f.key)) spec.flags[f.key] = *t.boolean(f.key);
+    if (info.pair_potential) {
+        if (t.has("mixing")) spec.mixing = *t.string("mixing");
+        for (ConfigTable& pair : t.tables("pairs"))
+            spec.pairs.push_back(read_pair_values(pair, info));
+    }
+    check_pair_options(spec, info);
     t.finish();
     return spec;
 }
@@ -218,47 +382,36 @@ PerSpecies plugin_parameter(const PluginSpec& spec, const std::string& key,
     return PerSpecies(std::move(v));
 }
 
-namespace {
-
-double uniform(const PluginSpec& spec, const std::string& key, double fallback) {
+double pair_parameter(const PluginSpec& spec, const std::string& key,
+                      const std::vector<Species>& species, std::size_t a, std::size_t b,
+                      double fallback) {
+    for (const PairValues& pv : spec.pairs) {
+        for (const std::string* name : {&pv.a, &pv.b})
+            if (std::none_of(species.begin(), species.end(),
+                             [&](const Species& s) { return s.name == *name; }))
+                throw InputError(pv.where + ": there is no species '" + *name + "'");
+        const std::string &na = species[a].name, &nb = species[b].name;
+        if ((pv.a == na && pv.b == nb) || (pv.a == nb && pv.b == na))
+            if (const auto it = pv.values.find(key); it != pv.values.end()) return it->second;
+    }
     const auto it = spec.params.find(key);
-    return it == spec.params.end() ? fallback : *it->second.uniform;
+    if (it == spec.params.end()) return fallback;
+    if (it->second.uniform) return *it->second.uniform;
+    const PerSpecies v = plugin_parameter(spec, key, species);
+    const double va = v.at(a, species.size()), vb = v.at(b, species.size());
+    const ParamInfo* p = param_info(plugin_info(spec.kind, spec.name, spec.where), key);
+    if (p && p->length && spec.mixing == "arithmetic") return 0.5 * (va + vb);
+    return std::sqrt(va * vb);
 }
-
-} // namespace
 
 template <int D>
 void add_plugin(Evolver<D>& e, const PluginSpec& spec, const std::vector<Species>& species,
                 std::uint64_t seed) {
-    const std::string& n = spec.name;
-    if (n == "harmonic")
-        e.add_force(std::make_unique<PairForce<D, HarmonicPair>>(
-            n, HarmonicPair{uniform(spec, "k", 0.0), uniform(spec, "a", -1.0)}));
-    else if (n == "wca")
-        e.add_force(std::make_unique<PairForce<D, WcaPair>>(
-            n, WcaPair{uniform(spec, "epsilon", 0.0), uniform(spec, "sigma", -1.0)}));
-    else if (n == "lj")
-        e.add_force(std::make_unique<PairForce<D, LjPair>>(
-            n, LjPair{uniform(spec, "epsilon", 0.0), uniform(spec, "sigma", -1.0),
-                      uniform(spec, "cutoff", 2.5)}));
-    else if (n == "self_propulsion")
-        e.add_force(std::make_unique<SelfPropulsion<D>>(plugin_parameter(spec, "alpha", species)));
-    else if (n == "polar_align")
-        e.add_torque(
-            std::make_unique<PolarAlign<D>>(uniform(spec, "J", 0.0), uniform(spec, "a", 0.0)));
-    else if (n == "brownian")
-        e.add_integrator(std::make_unique<BrownianIntegrator<D>>(
-            plugin_parameter(spec, "T", species), plugin_parameter(spec, "gamma", species), seed));
-    else if (n == "brownian_rotation")
-        e.add_integrator(std::make_unique<BrownianRotationIntegrator<D>>(
-            plugin_parameter(spec, "T", species), plugin_parameter(spec, "gamma", species), seed));
-    else if (n == "langevin")
-        e.add_integrator(std::make_unique<LangevinIntegrator<D>>(
-            plugin_parameter(spec, "T", species), plugin_parameter(spec, "gamma", species), seed));
-    else if (n == "nve")
-        e.add_integrator(std::make_unique<VelocityVerletIntegrator<D>>());
+    const PluginInfo& info = plugin_info(spec.kind, spec.name, spec.where);
+    if constexpr (D == 2)
+        info.add2(e, spec, species, seed);
     else
-        throw InputError(spec.where + ": no plug-in '" + n + "' in this build");
+        info.add3(e, spec, species, seed);
 }
 
 template void add_plugin<2>(Evolver<2>&, const PluginSpec&, const std::vector<Species>&,

@@ -18,11 +18,21 @@ struct PluginParam {
     std::string where;                                      // file:line:column: key '...'
 };
 
+// The values a pair potential's config gives one pair of species ([[force.pairs]]).
+struct PairValues {
+    std::string a, b; // species names
+    std::map<std::string, double> values;
+    std::string where;
+};
+
 struct PluginSpec {
     PluginKind kind = PluginKind::force;
     std::string name;
     std::string where; // of the table, for messages about the plug-in as a whole
     std::map<std::string, PluginParam> params; // only the keys the config gave
+    std::map<std::string, bool> flags;         // likewise
+    std::vector<PairValues> pairs;             // pair potentials only
+    std::string mixing = "geometric";          // pair potentials only
 };
 
 } // namespace pedesis
