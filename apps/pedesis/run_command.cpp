@@ -2,10 +2,15 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/run_config.hpp"
+#include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/event_run.hpp"
 #include "pedesis/run/soft_run.hpp"
 #include "pedesis/run/stepped_run.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
 #include <iostream>
 #include <memory>
 
@@ -16,18 +21,37 @@ struct RunArgs {
     std::string config;
     std::string out;
     std::string restart;
+    bool list_quantities = false;
 };
+
+// One line per quantity: name, unit, engines, meaning.
+void print_quantities(std::ostream& out) {
+    std::size_t width = 0;
+    for (const QuantityInfo& q : quantity_catalogue()) width = std::max(width, std::strlen(q.name));
+    out << fmt::format("{:<{}}  {:<16}  {:<30}  {}\n", "name", width, "unit", "engines", "meaning");
+    for (const QuantityInfo& q : quantity_catalogue())
+        out << fmt::format("{:<{}}  {:<16}  {:<30}  {}\n", q.name, width, q.unit, q.engines,
+                           q.meaning);
+}
 } // namespace
 
 void add_run_command(CLI::App& app) {
     auto a = std::make_shared<RunArgs>();
     auto* cmd =
         app.add_subcommand("run", "Run a simulation described by a TOML config (docs/config.md)");
-    cmd->add_option("config", a->config, "Config file")->required();
+    auto* config = cmd->add_option("config", a->config, "Config file");
+    auto* list = cmd->add_flag("--list-quantities", a->list_quantities,
+                               "Print every quantity log.csv can hold ([log] quantities) and exit");
+    config->excludes(list);
     cmd->add_option("--out", a->out, "Run directory (default: runs/<config name>)");
     cmd->add_option("--restart", a->restart,
                     "Continue exactly from a checkpoint.bin of an earlier run");
     cmd->callback([a] {
+        if (a->list_quantities) {
+            print_quantities(std::cout);
+            return;
+        }
+        if (a->config.empty()) throw CLI::RequiredError("config");
         const RunConfig config = load_run_config(a->config);
         RunOptions o;
         o.config_path = a->config;

@@ -10,9 +10,7 @@
 #include "cli_support.hpp"
 
 #include <fstream>
-#include <map>
 #include <regex>
-#include <sstream>
 
 using namespace pedesis::test;
 
@@ -23,23 +21,6 @@ class KobAndersen : public ScratchDir {};
 std::string example(const std::string& name) {
     std::ifstream in(std::string(PEDESIS_SOURCE_DIR) + "/examples/" + name);
     return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-// The log as columns by name.
-std::map<std::string, std::vector<double>> columns(const std::string& csv) {
-    std::istringstream in(csv);
-    std::string line, cell;
-    std::getline(in, line);
-    std::vector<std::string> names;
-    std::istringstream head(line);
-    while (std::getline(head, cell, ',')) names.push_back(cell);
-    std::map<std::string, std::vector<double>> out;
-    while (std::getline(in, line)) {
-        std::istringstream row(line);
-        for (std::size_t k = 0; std::getline(row, cell, ','); ++k)
-            out[names.at(k)].push_back(std::stod(cell));
-    }
-    return out;
 }
 
 } // namespace
@@ -61,22 +42,24 @@ TEST_F(KobAndersen, NvtHoldsTheTemperatureAndNveConservesEnergy) {
     const CliResult b = run_pedesis("run nve.toml --out nve --restart nvt/checkpoint.bin", dir);
     ASSERT_EQ(b.exit_code, 0) << b.output;
 
-    const auto t = columns(read("nvt/log.csv"));
+    const CsvColumns t = csv_columns(read("nvt/log.csv"));
+    const auto steps = t.numbers("step"), temperature = t.numbers("temperature");
     double mean_T = 0.0;
     int rows = 0;
-    for (std::size_t k = 0; k < t.at("step").size(); ++k)
-        if (t.at("step")[k] > 1000) {
-            mean_T += t.at("temperature")[k];
+    for (std::size_t k = 0; k < steps.size(); ++k)
+        if (steps[k] > 1000) {
+            mean_T += temperature[k];
             ++rows;
         }
     ASSERT_EQ(rows, 5);
     EXPECT_NEAR(mean_T / rows, 1.0, 0.05);
 
-    const auto e = columns(read("nve/log.csv"));
-    ASSERT_EQ(e.at("step").size(), 5u); // steps 2200 .. 3000
+    const CsvColumns e = csv_columns(read("nve/log.csv"));
+    const auto u = e.numbers("potential_energy"), kin = e.numbers("kinetic_energy");
+    ASSERT_EQ(u.size(), 5u); // steps 2200 .. 3000
     double lo = 1e300, hi = -1e300;
-    for (std::size_t k = 0; k < e.at("step").size(); ++k) {
-        const double total = e.at("potential_energy")[k] + e.at("kinetic_energy")[k];
+    for (std::size_t k = 0; k < u.size(); ++k) {
+        const double total = u[k] + kin[k];
         lo = std::min(lo, total);
         hi = std::max(hi, total);
     }

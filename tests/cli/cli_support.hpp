@@ -7,8 +7,11 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <map>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <vector>
 
 namespace pedesis::test {
 
@@ -65,6 +68,33 @@ class ScratchDir : public ::testing::Test {
     }
     std::filesystem::path dir;
 };
+
+// A CSV file with one header line (log.csv): the column names in order, and each
+// column's cells by name.
+struct CsvColumns {
+    std::vector<std::string> names;
+    std::map<std::string, std::vector<std::string>> cells;
+    std::vector<double> numbers(const std::string& name) const {
+        std::vector<double> v;
+        for (const auto& c : cells.at(name)) v.push_back(std::stod(c));
+        return v;
+    }
+};
+
+inline CsvColumns csv_columns(const std::string& csv) {
+    std::istringstream in(csv);
+    std::string line, cell;
+    std::getline(in, line);
+    CsvColumns out;
+    std::istringstream head(line);
+    while (std::getline(head, cell, ',')) out.names.push_back(cell);
+    while (std::getline(in, line)) {
+        std::istringstream row(line);
+        for (std::size_t k = 0; std::getline(row, cell, ','); ++k)
+            out.cells[out.names.at(k)].push_back(cell);
+    }
+    return out;
+}
 
 // A small valid config; tests replace pieces of it to make it invalid.
 inline std::string small_config(const std::string& extra_species = "",

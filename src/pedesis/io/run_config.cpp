@@ -3,6 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/config_table.hpp"
 #include "pedesis/io/frame_writers.hpp"
+#include "pedesis/observe/quantities.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
 #include <algorithm>
@@ -371,6 +372,33 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
         read_soft_sections(doc, root, c);
     else
         read_event_sections(doc, root, c);
+    if (auto log = root.table("log")) {
+        if (log->has("quantities")) {
+            const toml::node* n = doc["log"]["quantities"].node();
+            const auto* arr = n ? n->as_array() : nullptr;
+            if (!arr || arr->empty())
+                throw InputError(log->where("quantities") +
+                                 ": expected a non-empty list of names such as [\"time\", "
+                                 "\"temperature\"]");
+            for (std::size_t k = 0; k < arr->size(); ++k) {
+                const auto name = (*arr)[k].value_exact<std::string>();
+                if (!name)
+                    throw InputError(log->where("quantities") + ": entry " + std::to_string(k) +
+                                     " is not a string");
+                if (!find_quantity(*name))
+                    throw InputError(log->where("quantities") + ": unknown quantity '" + *name +
+                                     "' (known: " + quantity_names() +
+                                     "; `pedesis run --list-quantities` explains each)");
+                if (std::find(c.log_quantities.begin(), c.log_quantities.end(), *name) !=
+                    c.log_quantities.end())
+                    throw InputError(log->where("quantities") + ": '" + *name +
+                                     "' is listed twice");
+                c.log_quantities.push_back(*name);
+            }
+            log->strings("quantities", arr->size()); // marks the key as read
+        }
+        log->finish();
+    }
     root.finish();
     return c;
 }

@@ -72,6 +72,8 @@ struct RunConfig {
     double log_interval = 1.0;
     double snapshot_interval = 0.0; // 0: first and last frame only
     std::vector<std::string> formats = {"gsd"};
+    // [log] quantities: the columns of log.csv, in order (empty: all the engine measures)
+    std::vector<std::string> log_quantities;
     int histogram_bins = 50;
     std::optional<double> histogram_start; // unset: histogram of the final state only
     double checkpoint_interval = 0.0;      // 0: only at the end

@@ -94,19 +94,20 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         save_hard_checkpoint(path, run_checkpoint_magic, *engine_, record_);
     }
 
-    std::string log_header() const override {
-        return out_.log_header(growing_ ? ",list_rebuilds,packing_fraction,growth_pressure"
-                                        : ",list_rebuilds");
+    std::vector<std::string> log_columns() const override {
+        std::vector<std::string> c = out_.log_columns();
+        c.push_back("list_rebuilds");
+        if (growing_) c.insert(c.end(), {"packing_fraction", "growth_pressure"});
+        return c;
     }
 
-    std::string log_row() override {
+    void measure(std::vector<double>& values) override {
         const auto& e = *engine_;
-        const LogRow row = out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters());
-        std::string line = row.csv + fmt::format(",{}", e.counters().list_rebuilds);
-        if (growing_)
-            line += fmt::format(",{:.10g},{:.10g}", e.packing_fraction(), e.growth().last_pressure);
-        progress(row.temperature, row.pressure, row.has_pressure);
-        return line + "\n";
+        const HardMeasurement m =
+            out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters(), values);
+        values.push_back(static_cast<double>(e.counters().list_rebuilds));
+        if (growing_) values.insert(values.end(), {e.packing_fraction(), e.growth().last_pressure});
+        progress(m.temperature, m.pressure, m.has_pressure);
     }
 
     void start(bool /*fresh*/) override {

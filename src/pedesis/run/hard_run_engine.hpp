@@ -24,7 +24,7 @@ template <int D> class HardRunEngine : public RunEngine<D> {
                 c_.checkpoint_interval > 0 ? Trigger::every_time(c_.checkpoint_interval)
                                            : Trigger::never()};
     }
-    const std::vector<std::string>& formats() const { return c_.formats; }
+    OutputChoice outputs() const { return {c_.formats, c_.log_quantities}; }
 
     std::uint64_t frames() const override { return record_.frames; }
     void frame_written() override { ++record_.frames; }
@@ -45,7 +45,7 @@ template <template <int> class Engine>
 void run_hard_engine(const RunConfig& config, const RunOptions& options, std::ostream& console) {
     auto run = [&]<int D>() {
         Engine<D> engine(config, options, console);
-        Simulation<D>(engine, engine.schedule(), engine.formats(), options).run();
+        Simulation<D>(engine, engine.schedule(), engine.outputs(), options).run();
     };
     if (config.dimension == 2)
         run.template operator()<2>();

@@ -49,21 +49,30 @@ template <int D> void HardRunRecord<D>::load(std::istream& in) {
     histogram.load(in);
 }
 
-template <int D> std::string HardRunOutput<D>::log_header(const std::string& extra_columns) const {
-    std::string header = "time,collisions,collisions_per_particle,wall_collisions,kinetic_energy,"
-                         "energy_fraction,temperature";
-    for (const auto& s : c_.species)
-        header += ",temperature_" + s.name + ",kinetic_energy_" + s.name;
-    return header + ",pressure,pressure_ideal,compressibility,mean_free_time" + extra_columns +
-           "\n";
+template <int D> std::vector<std::string> HardRunOutput<D>::log_columns() const {
+    std::vector<std::string> c = {"time",
+                                  "collisions",
+                                  "collisions_per_particle",
+                                  "wall_collisions",
+                                  "kinetic_energy",
+                                  "energy_fraction",
+                                  "temperature"};
+    for (const auto& s : c_.species) {
+        c.push_back("temperature_" + s.name);
+        c.push_back("kinetic_energy_" + s.name);
+    }
+    for (const char* name : {"pressure", "pressure_ideal", "compressibility", "mean_free_time"})
+        c.push_back(name);
+    return c;
 }
 
 template <int D>
-LogRow HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, double t,
-                                 const EventCounters<D>& counters) {
-    LogRow row;
-    row.kinetics = measure_kinetics(p, box, hard_particle_dynamics);
-    const auto& k = row.kinetics;
+HardMeasurement HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, double t,
+                                          const EventCounters<D>& counters,
+                                          std::vector<double>& values) {
+    HardMeasurement m;
+    m.kinetics = measure_kinetics(p, box, hard_particle_dynamics);
+    const auto& k = m.kinetics;
     const double T = k.temperature();
     const double dt = t - record_.last_log_time;
     const double meanT = 0.5 * (T + record_.last_temperature);
@@ -71,26 +80,26 @@ LogRow HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, d
         interval_pressure(box, record_.last_counters, counters, dt, meanT, k.total_freedom);
     record_.integral_T_dt += meanT * dt;
     const double n = static_cast<double>(p.size());
-    const auto C = counters.pair_collisions;
+    const auto C = static_cast<double>(counters.pair_collisions);
     const double P_ideal = static_cast<double>(k.total_mobile) * meanT / box.volume();
-    row.csv = fmt::format(
-        "{:.10g},{},{:.6g},{},{:.10g},{:.8g},{:.8g}", t, C, static_cast<double>(C) / n,
-        counters.wall_collisions, k.total_kinetic,
-        record_.initial_kinetic > 0 ? k.total_kinetic / record_.initial_kinetic : 0.0, T);
+    values.insert(values.end(),
+                  {t, C, C / n, static_cast<double>(counters.wall_collisions), k.total_kinetic,
+                   record_.initial_kinetic > 0 ? k.total_kinetic / record_.initial_kinetic : 0.0,
+                   T});
     for (std::size_t s = 0; s < c_.species.size(); ++s)
-        row.csv += fmt::format(",{:.8g},{:.10g}", k.temperature(s), k.kinetic[s]);
-    const double mft = C ? static_cast<double>(k.total_mobile) * t / (2.0 * static_cast<double>(C))
-                         : std::numeric_limits<double>::infinity();
-    row.csv += fmt::format(",{:.8g},{:.8g},{:.8g},{:.8g}", dt > 0 ? P : 0.0, P_ideal,
-                           dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft);
+        values.insert(values.end(), {k.temperature(s), k.kinetic[s]});
+    const double mft = C > 0 ? static_cast<double>(k.total_mobile) * t / (2.0 * C)
+                             : std::numeric_limits<double>::infinity();
+    values.insert(values.end(),
+                  {dt > 0 ? P : 0.0, P_ideal, dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft});
     if (c_.histogram_start && t >= *c_.histogram_start) record_.histogram.add(p);
     record_.last_log_time = t;
     record_.last_temperature = T;
     record_.last_counters = counters;
-    row.temperature = T;
-    row.pressure = P;
-    row.has_pressure = dt > 0;
-    return row;
+    m.temperature = T;
+    m.pressure = P;
+    m.has_pressure = dt > 0;
+    return m;
 }
 
 template <int D> void HardRunOutput<D>::write_speed_histogram(const ParticleStore<D>& final_state) {

@@ -38,10 +38,8 @@ template <int D> struct HardRunRecord {
     void load(std::istream& in);
 };
 
-// One row of log.csv as measured: the shared columns as text (no line end) and the
-// values the drivers print.
-struct LogRow {
-    std::string csv;
+// What a measurement of the shared log columns gives the engines besides the values.
+struct HardMeasurement {
     SpeciesKinetics kinetics;
     double temperature = 0.0;
     double pressure = 0.0; // over the interval since the previous row
@@ -53,13 +51,13 @@ template <int D> class HardRunOutput {
     HardRunOutput(const RunConfig& c, const RunOptions& o, HardRunRecord<D>& record)
         : c_(c), o_(o), record_(record) {}
 
-    // The header of log.csv: the shared columns followed by `extra_columns` (",a,b").
-    std::string log_header(const std::string& extra_columns) const;
+    // The log columns both engines share, in order (two per species).
+    std::vector<std::string> log_columns() const;
 
-    // Measures a row at time t (velocities of p must be current), samples the speed
-    // histogram if asked, and moves the record on. The caller appends its own columns.
-    LogRow measure(const ParticleStore<D>& p, const Box<D>& box, double t,
-                   const EventCounters<D>& counters);
+    // Measures those columns at time t (velocities of p must be current), appending their
+    // values; samples the speed histogram if asked, and moves the record on.
+    HardMeasurement measure(const ParticleStore<D>& p, const Box<D>& box, double t,
+                            const EventCounters<D>& counters, std::vector<double>& values);
 
     // speed_histogram.csv from the samples, plus `final_state` when the histogram is of
     // the final state only. Not in the record, so a continued run does not count it twice.

@@ -46,9 +46,11 @@ template <int D> class RunEngine {
     // Results of an earlier run in the directory that this run will write anew and that
     // must not pass for its own meanwhile (summary.json, ...).
     virtual std::vector<const char*> stale_results() const = 0;
-    // log.csv: the header line and, measured now, one row (each with its line end).
-    virtual std::string log_header() const = 0;
-    virtual std::string log_row() = 0;
+    // The quantities it logs (names of observe/quantities.hpp), in the order of a default
+    // log.csv; measure() appends the value of each, in that order, measured now (it may
+    // print a progress line and move run averages on).
+    virtual std::vector<std::string> log_columns() const = 0;
+    virtual void measure(std::vector<double>& values) = 0;
 
     // Called once before the loop: the first printed line, and for a fresh run whatever
     // frame 0 must show (the soft engine computes the initial forces).

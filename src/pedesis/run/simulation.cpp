@@ -1,33 +1,56 @@
 #include "pedesis/run/simulation.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run_directory.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
+#include <stdexcept>
 
 namespace pedesis {
 
 template <int D>
-Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, std::vector<std::string> formats,
+Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice outputs,
                           const RunOptions& options)
-    : engine_(engine), schedule_(std::move(schedule)), formats_(std::move(formats)),
-      options_(options) {}
+    : engine_(engine), schedule_(std::move(schedule)), outputs_(std::move(outputs)),
+      options_(options) {
+    const std::vector<std::string> logged = engine_.log_columns();
+    for (const std::string& name : logged)
+        if (!find_quantity(name))
+            throw std::logic_error("log column '" + name + "' is not in the quantity catalogue");
+    std::vector<std::string> chosen = outputs_.quantities.empty() ? logged : outputs_.quantities;
+    for (const std::string& name : chosen) {
+        const auto it = std::find(logged.begin(), logged.end(), name);
+        if (it == logged.end()) {
+            std::string known;
+            for (const std::string& l : logged) known += (known.empty() ? "" : ", ") + l;
+            throw InputError(options_.config_path.string() + ": [log] quantities: '" + name +
+                             "' is not measured by this run (it measures: " + known + ")");
+        }
+        columns_.push_back(static_cast<std::size_t>(it - logged.begin()));
+        counts_.push_back(find_quantity(name)->count);
+    }
+}
 
 template <int D> void Simulation<D>::run() {
     const auto& dir = options_.out_dir;
     const std::vector<const char*> stale = engine_.stale_results();
     prepare_run_directory(dir, options_.config_path, stale);
     log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
-    log_->append(engine_.log_header());
-    frames_ = std::make_unique<FrameWriters<D>>(dir, formats_);
+    std::string header;
+    const std::vector<std::string> logged = engine_.log_columns();
+    for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged[c];
+    log_->append(header + "\n");
+    frames_ = std::make_unique<FrameWriters<D>>(dir, outputs_.formats);
 
     const bool fresh = !options_.restart;
     engine_.start(fresh);
     // a restarted run writes nothing at its start: the run it continues did
     if (fresh) {
-        log_->append(engine_.log_row());
+        write_log_row();
         write_frame();
     }
     for (Trigger* t : {&schedule_.log, &schedule_.frames, &schedule_.checkpoint})
@@ -48,7 +71,7 @@ template <int D> void Simulation<D>::run() {
             const double time = engine_.time();
             // the end of the run always has a log row; its frame and checkpoint come below
             if (schedule_.log.due(step, time) || stopped_by || a.log_now) {
-                log_->append(engine_.log_row());
+                write_log_row();
                 schedule_.log.schedule(step, time);
             }
             if (stopped_by) break;
@@ -73,6 +96,24 @@ template <int D> void Simulation<D>::run() {
     engine_.save_checkpoint(dir / "checkpoint.bin");
     close();
     engine_.finish(stopped_by);
+}
+
+// Every value with 10 significant digits (counts as integers): "inf" and "nan" as
+// pandas and numpy read them.
+template <int D> void Simulation<D>::write_log_row() {
+    values_.clear();
+    engine_.measure(values_);
+    fmt::memory_buffer row;
+    for (std::size_t k = 0; k < columns_.size(); ++k) {
+        if (k) row.push_back(',');
+        const double v = values_.at(columns_[k]);
+        if (counts_[k])
+            fmt::format_to(std::back_inserter(row), "{}", static_cast<std::uint64_t>(v));
+        else
+            fmt::format_to(std::back_inserter(row), "{:.10g}", v);
+    }
+    row.push_back('\n');
+    log_->append(fmt::to_string(row));
 }
 
 template <int D> void Simulation<D>::write_frame() {

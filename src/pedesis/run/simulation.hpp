@@ -22,9 +22,18 @@ struct Schedule {
     Trigger checkpoint = Trigger::never();
 };
 
+// What the run directory holds: the frame formats, and the log's columns (the engine's
+// own list when empty).
+struct OutputChoice {
+    std::vector<std::string> formats;
+    std::vector<std::string> quantities;
+};
+
 template <int D> class Simulation {
   public:
-    Simulation(RunEngine<D>& engine, Schedule schedule, std::vector<std::string> formats,
+    // Throws InputError (before any file exists) if a chosen quantity is one the engine
+    // does not measure.
+    Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice outputs,
                const RunOptions& options);
 
     // Prepares the run directory, runs to the engine's stop condition and writes the end
@@ -33,12 +42,16 @@ template <int D> class Simulation {
 
   private:
     void write_frame();
+    void write_log_row();
     void close();
     std::string failure_note() const;
 
     RunEngine<D>& engine_;
     Schedule schedule_;
-    std::vector<std::string> formats_;
+    OutputChoice outputs_;
+    std::vector<std::size_t> columns_; // indices into the engine's log_columns()
+    std::vector<bool> counts_;         // per chosen column: written as an integer
+    std::vector<double> values_;       // one measured row, reused
     const RunOptions& options_;
     std::unique_ptr<AtomicAppendFile> log_;
     std::unique_ptr<FrameWriters<D>> frames_;

@@ -95,14 +95,15 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     std::vector<const char*> stale_results() const override { return {"summary.json"}; }
 
-    std::string log_header() const override {
-        std::string header = "step,time,polar_order,msd,potential_energy,";
-        if (inertial()) header += "kinetic_energy,temperature,";
-        header += "pressure,pressure_ideal,pressure_virial,pressure_active,list_rebuilds\n";
-        return header;
+    std::vector<std::string> log_columns() const override {
+        std::vector<std::string> c = {"step", "time", "polar_order", "msd", "potential_energy"};
+        if (inertial()) c.insert(c.end(), {"kinetic_energy", "temperature", "total_energy"});
+        c.insert(c.end(), {"pressure", "pressure_ideal", "pressure_virial", "pressure_active",
+                           "list_rebuilds"});
+        return c;
     }
 
-    std::string log_row() override {
+    void measure(std::vector<double>& values) override {
         const auto& s = state_;
         const PairTotals pair = evolver_->pair_totals();
         const double V = s.box.volume();
@@ -121,11 +122,13 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         for (const auto& f : evolver_->forces()) active += f->swim_pressure(s, book_.start);
         const double pressure = ideal + virial + active;
         const double order = polar_order(s);
-        std::string row = fmt::format("{},{:.10g},{:.8g},{:.10g},{:.10g},", s.step, s.time, order,
-                                      mean_squared_displacement(s, book_.start), pair.energy);
-        if (inertial()) row += fmt::format("{:.10g},{:.10g},", k.total_kinetic, k.temperature());
-        row += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{}\n", pressure, ideal, virial, active,
-                           evolver_->list_builds());
+        values.insert(values.end(), {static_cast<double>(s.step), s.time, order,
+                                     mean_squared_displacement(s, book_.start), pair.energy});
+        if (inertial())
+            values.insert(values.end(),
+                          {k.total_kinetic, k.temperature(), pair.energy + k.total_kinetic});
+        values.insert(values.end(), {pressure, ideal, virial, active,
+                                     static_cast<double>(evolver_->list_builds())});
         if (s.step > 0) {
             ++book_.samples;
             book_.sum_pressure += pressure;
@@ -133,7 +136,6 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             book_.sum_temperature += k.temperature();
         }
         progress(order, pressure);
-        return row;
     }
 
     void start(bool fresh) override {
@@ -187,7 +189,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
-    const std::vector<std::string>& formats() const { return c_.formats; }
+    OutputChoice outputs() const { return {c_.formats, c_.log_quantities}; }
 
   private:
     // The plug-ins say what the logs need: an overdamped position integrator (its bath
@@ -248,7 +250,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 template <int D>
 void run_soft(const RunConfig& config, const RunOptions& options, std::ostream& console) {
     SoftRunEngine<D> engine(config, options, console);
-    Simulation<D>(engine, engine.schedule(), engine.formats(), options).run();
+    Simulation<D>(engine, engine.schedule(), engine.outputs(), options).run();
 }
 
 } // namespace

@@ -117,13 +117,16 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
         save_hard_checkpoint(path, stepped_checkpoint_magic, *engine_, record_);
     }
 
-    std::string log_header() const override {
-        return out_.log_header(",step,v_rms,mean_speed,pressure_running");
+    std::vector<std::string> log_columns() const override {
+        std::vector<std::string> c = out_.log_columns();
+        c.insert(c.end(), {"step", "v_rms", "mean_speed", "pressure_running"});
+        return c;
     }
 
-    std::string log_row() override {
+    void measure(std::vector<double>& values) override {
         const auto& e = *engine_;
-        const LogRow row = out_.measure(e.particles(), e.box(), e.time(), e.counters());
+        const HardMeasurement m =
+            out_.measure(e.particles(), e.box(), e.time(), e.counters(), values);
         double sum_v2 = 0.0, sum_v = 0.0;
         for (std::size_t i = 0; i < e.size(); ++i) {
             if (std::isinf(e.particles().mass(i))) continue;
@@ -131,18 +134,16 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
             sum_v2 += v2;
             sum_v += std::sqrt(v2);
         }
-        const auto mobile =
-            static_cast<double>(std::max<std::size_t>(row.kinetics.total_mobile, 1));
+        const auto mobile = static_cast<double>(std::max<std::size_t>(m.kinetics.total_mobile, 1));
         const double v_rms = std::sqrt(sum_v2 / mobile);
-        const double P_run = running_pressure(row.kinetics.total_freedom);
+        const double P_run = running_pressure(m.kinetics.total_freedom);
         // the notebook's line, once per log row
         if (c_.progress)
             console_ << fmt::format("  Iteration: {:<9d} Time: {:<11.4E} V_RMS: {:<11.4E} {}: {}\n",
                                     e.steps(), e.time(), v_rms,
                                     all_walls(e.box()) ? "Wall Pressure" : "Pressure",
                                     e.time() > 0 ? fmt::format("{:.6g}", P_run) : "-");
-        return row.csv +
-               fmt::format(",{},{:.8g},{:.8g},{:.8g}\n", e.steps(), v_rms, sum_v / mobile, P_run);
+        values.insert(values.end(), {static_cast<double>(e.steps()), v_rms, sum_v / mobile, P_run});
     }
 
     void start(bool /*fresh*/) override {

@@ -1,0 +1,88 @@
+#include "pedesis/observe/quantities.hpp"
+
+namespace pedesis {
+
+namespace {
+constexpr bool count = true;
+constexpr const char* hard = "event, stepped";
+constexpr const char* all = "event, stepped, soft";
+constexpr const char* soft = "soft";
+constexpr const char* inertial = "stepped, event, langevin, nve";
+} // namespace
+
+const std::vector<QuantityInfo>& quantity_catalogue() {
+    static const std::vector<QuantityInfo> catalogue = {
+        {"step", "1", "time steps so far", "stepped, soft", count},
+        {"time", "time", "simulated time", all},
+        {"collisions", "1", "pair collisions so far", hard, count},
+        {"collisions_per_particle", "1", "pair collisions so far per particle", hard},
+        {"wall_collisions", "1", "particle-wall collisions so far", hard, count},
+        {"kinetic_energy", "energy", "total kinetic energy sum m v^2 / 2 (mobile particles)",
+         inertial},
+        {"kinetic_energy_<species>", "energy", "kinetic energy of one species", hard},
+        {"energy_fraction", "1", "kinetic energy over its initial value", hard},
+        {"temperature", "energy",
+         "kinetic temperature 2 K / f, f the degrees of freedom (less the conserved momentum)",
+         inertial},
+        {"temperature_<species>", "energy", "kinetic temperature of one species", hard},
+        {"potential_energy", "energy", "potential energy of the pair forces", soft},
+        {"total_energy", "energy",
+         "potential plus kinetic energy: constant in NVE up to the integrator's error",
+         "langevin, nve"},
+        {"pressure", "energy / volume",
+         "pressure P; hard particles: averaged over the interval since the previous row "
+         "(walls on walled axes, collision virial on periodic ones); soft: at the instant, "
+         "pressure_ideal + pressure_virial + pressure_active",
+         all},
+        {"pressure_ideal", "energy / volume",
+         "ideal-gas part: n T (hard: the interval's mean temperature; soft inertial: 2 K / (d V) "
+         "in the centre-of-mass frame; overdamped: n T of the bath)",
+         all},
+        {"compressibility", "1", "Z = P / (n T) over the interval", hard},
+        {"mean_free_time", "time", "N_mobile t / (2 collisions): mean time between collisions",
+         hard},
+        {"list_rebuilds", "1", "neighbour-list builds so far", "event, soft", count},
+        {"packing_fraction", "1", "volume fraction of the particles (growth runs)", "event"},
+        {"growth_pressure", "1",
+         "reduced pressure P V / (N T) over the last N collisions "
+         "(growth runs)",
+         "event"},
+        {"v_rms", "length / time", "root-mean-square speed of the mobile particles", "stepped"},
+        {"mean_speed", "length / time", "mean speed of the mobile particles", "stepped"},
+        {"pressure_running", "energy / volume",
+         "the notebook's pressure: everything the walls received since t = 0, over the whole "
+         "time",
+         "stepped"},
+        {"polar_order", "1", "|sum n_i| / N: 0 for random directors, 1 when aligned", soft},
+        {"msd", "length^2", "mean squared displacement since step 0 (unwrapped)", soft},
+        {"pressure_virial", "energy / volume", "pair virial sum r_ij . F_ij / (d V)", soft},
+        {"pressure_active", "energy / volume",
+         "swim pressure of the self-propulsion forces, sum alpha n_i . dr_i / (d V)", soft},
+    };
+    return catalogue;
+}
+
+const QuantityInfo* find_quantity(std::string_view column) {
+    constexpr std::string_view placeholder = "<species>";
+    for (const QuantityInfo& q : quantity_catalogue()) {
+        const std::string_view name = q.name;
+        if (name == column) return &q;
+        const auto at = name.find(placeholder);
+        if (at == std::string_view::npos) continue;
+        const std::string_view head = name.substr(0, at);
+        const std::string_view tail = name.substr(at + placeholder.size());
+        if (column.size() > head.size() + tail.size() && column.starts_with(head) &&
+            column.ends_with(tail))
+            return &q;
+    }
+    return nullptr;
+}
+
+std::string quantity_names() {
+    std::string s;
+    for (const QuantityInfo& q : quantity_catalogue())
+        s += std::string(s.empty() ? "" : ", ") + q.name;
+    return s;
+}
+
+} // namespace pedesis
