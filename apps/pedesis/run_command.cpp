@@ -3,9 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/run_config.hpp"
 #include "pedesis/observe/quantities.hpp"
-#include "pedesis/run/event_run.hpp"
-#include "pedesis/run/soft_run.hpp"
-#include "pedesis/run/stepped_run.hpp"
+#include "pedesis/run/run.hpp"
 
 #include <fmt/format.h>
 
@@ -59,12 +57,7 @@ void add_run_command(CLI::App& app) {
                         ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
                         : std::filesystem::path(a->out);
         if (!a->restart.empty()) o.restart = a->restart;
-        if (config.soft())
-            run_soft_simulation(config, o, std::cout);
-        else if (config.dynamics == "stepped")
-            run_stepped_simulation(config, o, std::cout);
-        else
-            run_event_simulation(config, o, std::cout);
+        make_run(config, o, std::cout)->run();
     });
 }
 

@@ -196,9 +196,13 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
 
 } // namespace
 
-void run_event_simulation(const RunConfig& config, const RunOptions& options,
-                          std::ostream& console) {
-    run_hard_engine<EventRunEngine>(config, options, console);
+template <int D>
+EngineSetup<D> event_engine_setup(const RunConfig& config, const RunOptions& options,
+                                  std::ostream& console) {
+    return hard_engine_setup<EventRunEngine, D>(config, options, console);
 }
+
+template EngineSetup<2> event_engine_setup<2>(const RunConfig&, const RunOptions&, std::ostream&);
+template EngineSetup<3> event_engine_setup<3>(const RunConfig&, const RunOptions&, std::ostream&);
 
 } // namespace pedesis

@@ -1,18 +1,17 @@
 #pragma once
-// Drives an event-driven run from a config: builds (or restores) the engine, and
-// writes the run directory: log.csv, trajectory.xyz, snapshots/, speed_histogram.csv,
-// checkpoint.bin, summary.json. Engines know nothing of files; this is where they meet.
+// The event-driven engine's run: builds (or restores) the engine from a config and
+// measures what its run directory holds (log columns, speed histogram, summary); the
+// Simulation drives it.
 #include "pedesis/io/run_config.hpp"
 #include "pedesis/run/run_options.hpp"
+#include "pedesis/run/simulation.hpp"
 
-#include <filesystem>
-#include <optional>
 #include <ostream>
-#include <string>
 
 namespace pedesis {
 
-void run_event_simulation(const RunConfig& config, const RunOptions& options,
-                          std::ostream& console);
+template <int D>
+EngineSetup<D> event_engine_setup(const RunConfig& config, const RunOptions& options,
+                                  std::ostream& console);
 
 } // namespace pedesis

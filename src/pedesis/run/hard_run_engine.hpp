@@ -40,17 +40,14 @@ template <int D> class HardRunEngine : public RunEngine<D> {
     HardRunOutput<D> out_;
 };
 
-// Runs a hard-particle engine's run (EventRunEngine, SteppedRunEngine) in 2D or 3D.
-template <template <int> class Engine>
-void run_hard_engine(const RunConfig& config, const RunOptions& options, std::ostream& console) {
-    auto run = [&]<int D>() {
-        Engine<D> engine(config, options, console);
-        Simulation<D>(engine, engine.schedule(), engine.outputs(), options).run();
-    };
-    if (config.dimension == 2)
-        run.template operator()<2>();
-    else
-        run.template operator()<3>();
+// The setup of a hard-particle engine's run (EventRunEngine, SteppedRunEngine).
+template <template <int> class Engine, int D>
+EngineSetup<D> hard_engine_setup(const RunConfig& config, const RunOptions& options,
+                                 std::ostream& console) {
+    auto engine = std::make_unique<Engine<D>>(config, options, console);
+    EngineSetup<D> setup{nullptr, engine->schedule(), engine->outputs()};
+    setup.engine = std::move(engine);
+    return setup;
 }
 
 } // namespace pedesis

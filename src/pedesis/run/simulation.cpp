@@ -17,7 +17,8 @@ Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice 
                           const RunOptions& options)
     : engine_(engine), schedule_(std::move(schedule)), outputs_(std::move(outputs)),
       options_(options) {
-    const std::vector<std::string> logged = engine_.log_columns();
+    logged_ = engine_.log_columns();
+    const std::vector<std::string>& logged = logged_;
     for (const std::string& name : logged)
         if (!find_quantity(name))
             throw std::logic_error("log column '" + name + "' is not in the quantity catalogue");
@@ -32,17 +33,19 @@ Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice 
         }
         columns_.push_back(static_cast<std::size_t>(it - logged.begin()));
         counts_.push_back(find_quantity(name)->count);
+        chosen_.push_back(name);
     }
 }
 
-template <int D> void Simulation<D>::run() {
+template <int D> void Simulation<D>::open() {
+    if (opened_) return;
+    opened_ = true;
     const auto& dir = options_.out_dir;
     const std::vector<const char*> stale = engine_.stale_results();
     prepare_run_directory(dir, options_.config_path, stale);
     log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
     std::string header;
-    const std::vector<std::string> logged = engine_.log_columns();
-    for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged[c];
+    for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged_[c];
     log_->append(header + "\n");
     frames_ = std::make_unique<FrameWriters<D>>(dir, outputs_.formats);
 
@@ -55,26 +58,46 @@ template <int D> void Simulation<D>::run() {
     }
     for (Trigger* t : {&schedule_.log, &schedule_.frames, &schedule_.checkpoint})
         t->schedule(engine_.step(), engine_.time());
+    for (Operation& op : operations_) op.trigger.schedule(engine_.step(), engine_.time());
+}
 
-    const char* stopped_by = nullptr;
+template <int D> void Simulation<D>::add_operation(Trigger trigger, std::function<void()> act) {
+    if (opened_) trigger.schedule(engine_.step(), engine_.time());
+    operations_.push_back({trigger, std::move(act)});
+}
+
+template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, double max_time) {
+    open();
+    if (closed_) throw std::logic_error("Simulation::advance after close");
+    const auto& dir = options_.out_dir;
+    // a time limit within rounding of the clock is reached (a stepped clock is k dt)
+    const auto reached = [&] {
+        return engine_.step() >= max_step ||
+               engine_.time() >= max_time - 1e-9 * std::max(1.0, std::abs(max_time));
+    };
     try {
-        while (!stopped_by) {
-            std::uint64_t until_step = std::numeric_limits<std::uint64_t>::max();
-            double until_time = std::numeric_limits<double>::infinity();
+        while (!stopped_by_ && !reached()) {
+            if (between_advances_) between_advances_();
+            std::uint64_t until_step = max_step;
+            double until_time = max_time;
             for (const Trigger* t : {&schedule_.log, &schedule_.frames, &schedule_.checkpoint}) {
                 until_step = std::min(until_step, t->next_step());
                 until_time = std::min(until_time, t->next_time());
             }
+            for (const Operation& op : operations_) {
+                until_step = std::min(until_step, op.trigger.next_step());
+                until_time = std::min(until_time, op.trigger.next_time());
+            }
             const Advance a = engine_.advance(until_step, until_time);
-            stopped_by = a.stopped_by;
+            stopped_by_ = a.stopped_by;
             const std::uint64_t step = engine_.step();
             const double time = engine_.time();
-            // the end of the run always has a log row; its frame and checkpoint come below
-            if (schedule_.log.due(step, time) || stopped_by || a.log_now) {
+            // the end of the run always has a log row; its frame and checkpoint come at close
+            if (schedule_.log.due(step, time) || stopped_by_ || a.log_now) {
                 write_log_row();
                 schedule_.log.schedule(step, time);
             }
-            if (stopped_by) break;
+            if (stopped_by_) break;
             if (schedule_.frames.due(step, time)) {
                 write_frame();
                 schedule_.frames.schedule(step, time);
@@ -83,19 +106,37 @@ template <int D> void Simulation<D>::run() {
                 engine_.save_checkpoint(dir / "checkpoint.bin");
                 schedule_.checkpoint.schedule(step, time);
             }
+            for (Operation& op : operations_)
+                if (op.trigger.due(step, time)) {
+                    op.act();
+                    op.trigger.schedule(step, time);
+                }
         }
     } catch (const RunError& e) {
         // the state is broken: keep what was written while it was good
-        close();
+        closed_ = true;
+        close_files();
         throw RunError(std::string(e.what()) + failure_note());
     }
+    // (any other exception, an interrupt or a callback's error, leaves a good state)
+    return stopped_by_;
+}
 
+template <int D> void Simulation<D>::close(const char* ended_by) {
+    open();
+    if (closed_) return;
+    closed_ = true;
     if (frames_this_run_ == 0 || last_frame_step_ != engine_.step() ||
         last_frame_time_ != engine_.time())
         write_frame();
-    engine_.save_checkpoint(dir / "checkpoint.bin");
-    close();
-    engine_.finish(stopped_by);
+    engine_.save_checkpoint(options_.out_dir / "checkpoint.bin");
+    close_files();
+    engine_.finish(stopped_by_ ? stopped_by_ : ended_by);
+}
+
+template <int D> void Simulation<D>::run() {
+    advance();
+    close("");
 }
 
 // Every value with 10 significant digits (counts as integers): "inf" and "nan" as
@@ -103,6 +144,8 @@ template <int D> void Simulation<D>::run() {
 template <int D> void Simulation<D>::write_log_row() {
     values_.clear();
     engine_.measure(values_);
+    last_row_.clear();
+    for (std::size_t c : columns_) last_row_.push_back(values_.at(c));
     fmt::memory_buffer row;
     for (std::size_t k = 0; k < columns_.size(); ++k) {
         if (k) row.push_back(',');
@@ -124,7 +167,7 @@ template <int D> void Simulation<D>::write_frame() {
     last_frame_time_ = engine_.time();
 }
 
-template <int D> void Simulation<D>::close() {
+template <int D> void Simulation<D>::close_files() {
     if (log_) log_->commit();
     if (frames_) frames_->commit();
 }

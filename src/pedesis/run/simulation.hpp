@@ -10,6 +10,8 @@
 #include "pedesis/run/run_options.hpp"
 #include "pedesis/run/trigger.hpp"
 
+#include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +31,13 @@ struct OutputChoice {
     std::vector<std::string> quantities;
 };
 
+// An engine built from a config, with what the config asks of its run directory.
+template <int D> struct EngineSetup {
+    std::unique_ptr<RunEngine<D>> engine;
+    Schedule schedule;
+    OutputChoice outputs;
+};
+
 template <int D> class Simulation {
   public:
     // Throws InputError (before any file exists) if a chosen quantity is one the engine
@@ -36,25 +45,62 @@ template <int D> class Simulation {
     Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice outputs,
                const RunOptions& options);
 
-    // Prepares the run directory, runs to the engine's stop condition and writes the end
-    // of the run. Throws RunError (outputs kept) if the run fails.
+    // The whole run as the CLI makes it: open, advance to the stop condition, close.
+    // Throws RunError (outputs kept) if the run fails.
     void run();
 
+    // The steps of run(), for a script that drives the run.
+    // open: the run directory, the log's header, and (for a fresh run) row and frame 0;
+    // called by advance and close if not yet.
+    void open();
+    // Advances until the config's stop condition (then returns its name) or until step
+    // `max_step` / time `max_time`, whichever comes first (then returns null). An
+    // exception from an operation or from between_advances leaves the run able to go on.
+    const char* advance(std::uint64_t max_step = std::numeric_limits<std::uint64_t>::max(),
+                        double max_time = std::numeric_limits<double>::infinity());
+    // The end of the run directory: the last frame, the checkpoint, the summary (whose
+    // stopped_by is the stop condition, or `ended_by` if none was met). Once.
+    void close(const char* ended_by);
+
+    // One more thing to do when `trigger` fires (not at the stop, like frames): a
+    // script's writer or callback.
+    void add_operation(Trigger trigger, std::function<void()> act);
+    // Called before every advance of the engine (a script checks for Ctrl-C there).
+    void set_between_advances(std::function<void()> f) { between_advances_ = std::move(f); }
+
+    // The log's columns and the values of its last row (empty before the first).
+    const std::vector<std::string>& log_names() const { return chosen_; }
+    const std::vector<double>& last_log_row() const { return last_row_; }
+    const char* stopped_by() const { return stopped_by_; }
+    bool closed() const { return closed_; }
+
   private:
+    struct Operation {
+        Trigger trigger;
+        std::function<void()> act;
+    };
+
     void write_frame();
     void write_log_row();
-    void close();
+    void close_files();
     std::string failure_note() const;
 
     RunEngine<D>& engine_;
     Schedule schedule_;
     OutputChoice outputs_;
-    std::vector<std::size_t> columns_; // indices into the engine's log_columns()
+    std::vector<std::string> logged_;  // every column the engine measures
+    std::vector<std::string> chosen_;  // the log's columns
+    std::vector<std::size_t> columns_; // their indices into logged_
     std::vector<bool> counts_;         // per chosen column: written as an integer
     std::vector<double> values_;       // one measured row, reused
+    std::vector<double> last_row_;     // the chosen columns of the last row
     const RunOptions& options_;
+    std::vector<Operation> operations_;
+    std::function<void()> between_advances_;
     std::unique_ptr<AtomicAppendFile> log_;
     std::unique_ptr<FrameWriters<D>> frames_;
+    bool opened_ = false, closed_ = false;
+    const char* stopped_by_ = nullptr;
     std::uint64_t frames_this_run_ = 0; // by this invocation (a restart starts at 0)
     std::uint64_t last_frame_step_ = 0;
     double last_frame_time_ = 0.0;

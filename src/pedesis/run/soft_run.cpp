@@ -75,9 +75,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     std::uint64_t step() const override { return state_.step; }
     double time() const override { return state_.time; }
 
-    Advance advance(std::uint64_t until_step, double /*until_time*/) override {
+    Advance advance(std::uint64_t until_step, double until_time) override {
         const std::uint64_t target = std::min<std::uint64_t>(until_step, c_.steps);
-        while (state_.step < target) {
+        // a time target within rounding of the clock k dt is reached
+        while (state_.step < target && state_.time < until_time - 1e-9 * c_.dt) {
             evolver_->evolve(c_.dt);
             // a multiple of dt, not a running sum: t = 10 after 1000 steps of 0.01
             state_.time = time_start_ + static_cast<double>(state_.step - step_start_) * c_.dt;
@@ -247,20 +248,18 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     std::optional<std::chrono::steady_clock::time_point> last_progress_;
 };
 
-template <int D>
-void run_soft(const RunConfig& config, const RunOptions& options, std::ostream& console) {
-    SoftRunEngine<D> engine(config, options, console);
-    Simulation<D>(engine, engine.schedule(), engine.outputs(), options).run();
-}
-
 } // namespace
 
-void run_soft_simulation(const RunConfig& config, const RunOptions& options,
-                         std::ostream& console) {
-    if (config.dimension == 2)
-        run_soft<2>(config, options, console);
-    else
-        run_soft<3>(config, options, console);
+template <int D>
+EngineSetup<D> soft_engine_setup(const RunConfig& config, const RunOptions& options,
+                                 std::ostream& console) {
+    auto engine = std::make_unique<SoftRunEngine<D>>(config, options, console);
+    EngineSetup<D> setup{nullptr, engine->schedule(), engine->outputs()};
+    setup.engine = std::move(engine);
+    return setup;
 }
+
+template EngineSetup<2> soft_engine_setup<2>(const RunConfig&, const RunOptions&, std::ostream&);
+template EngineSetup<3> soft_engine_setup<3>(const RunConfig&, const RunOptions&, std::ostream&);
 
 } // namespace pedesis

@@ -219,9 +219,13 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
 
 } // namespace
 
-void run_stepped_simulation(const RunConfig& config, const RunOptions& options,
-                            std::ostream& console) {
-    run_hard_engine<SteppedRunEngine>(config, options, console);
+template <int D>
+EngineSetup<D> stepped_engine_setup(const RunConfig& config, const RunOptions& options,
+                                    std::ostream& console) {
+    return hard_engine_setup<SteppedRunEngine, D>(config, options, console);
 }
+
+template EngineSetup<2> stepped_engine_setup<2>(const RunConfig&, const RunOptions&, std::ostream&);
+template EngineSetup<3> stepped_engine_setup<3>(const RunConfig&, const RunOptions&, std::ostream&);
 
 } // namespace pedesis

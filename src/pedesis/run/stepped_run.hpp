@@ -1,17 +1,18 @@
 #pragma once
-// Drives a time-stepped hard-particle run (dynamics = stepped) from a config: builds (or
-// restores) the engine, steps it, and writes the run directory of the event engine
-// (log.csv with the same columns plus step, v_rms, mean_speed and the running pressure,
-// trajectory.xyz, snapshots/, speed_histogram.csv, checkpoint.bin, summary.json), so
-// that plots and movies work for both.
+// The time-stepped hard-particle engine's run (dynamics = stepped): builds (or restores)
+// the engine and measures the event engine's log columns plus step, v_rms, mean_speed
+// and the notebook's running pressure, so that plots and movies work for both; the
+// Simulation drives it.
 #include "pedesis/io/run_config.hpp"
-#include "pedesis/run/event_run.hpp" // RunOptions
+#include "pedesis/run/run_options.hpp"
+#include "pedesis/run/simulation.hpp"
 
 #include <ostream>
 
 namespace pedesis {
 
-void run_stepped_simulation(const RunConfig& config, const RunOptions& options,
-                            std::ostream& console);
+template <int D>
+EngineSetup<D> stepped_engine_setup(const RunConfig& config, const RunOptions& options,
+                                    std::ostream& console);
 
 } // namespace pedesis

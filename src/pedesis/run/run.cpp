@@ -1,0 +1,159 @@
+#include "pedesis/run/run.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/io/atomic_file.hpp"
+#include "pedesis/io/gsd_writer.hpp"
+#include "pedesis/io/xyz_writer.hpp"
+#include "pedesis/run/event_run.hpp"
+#include "pedesis/run/simulation.hpp"
+#include "pedesis/run/soft_run.hpp"
+#include "pedesis/run/stepped_run.hpp"
+
+namespace pedesis {
+
+namespace {
+
+template <int D>
+EngineSetup<D> engine_setup(const RunConfig& c, const RunOptions& o, std::ostream& out) {
+    if (c.soft()) return soft_engine_setup<D>(c, o, out);
+    if (c.dynamics == "stepped") return stepped_engine_setup<D>(c, o, out);
+    return event_engine_setup<D>(c, o, out);
+}
+
+// A trajectory a script asked for: appended to at its trigger, committed at the end.
+template <int D> class ScriptTrajectory {
+  public:
+    ScriptTrajectory(const std::filesystem::path& path, const std::string& format) {
+        if (format == "gsd")
+            gsd_ = std::make_unique<GsdWriter<D>>(path);
+        else if (format == "xyz")
+            xyz_ = std::make_unique<AtomicAppendFile>(path);
+        else
+            throw InputError("trajectory format '" + format + "' (known: gsd, xyz)");
+    }
+    void append(const Frame<D>& f) {
+        if (gsd_) gsd_->append(f);
+        if (xyz_) xyz_->append(xyz_frame(f));
+    }
+    void commit() {
+        if (gsd_) gsd_->commit();
+        if (xyz_) xyz_->commit();
+    }
+
+  private:
+    std::unique_ptr<GsdWriter<D>> gsd_;
+    std::unique_ptr<AtomicAppendFile> xyz_;
+};
+
+template <int D> class RunOf final : public Run {
+  public:
+    // The engines keep references to the config and options: the run owns both.
+    RunOf(const RunConfig& c, const RunOptions& o, std::ostream& out)
+        : config_(c), options_(o), setup_(engine_setup<D>(config_, options_, out)),
+          sim_(*setup_.engine, setup_.schedule, setup_.outputs, options_),
+          has_steps_(c.dynamics != "event") {}
+
+    int dimension() const override { return D; }
+    std::uint64_t step() const override { return setup_.engine->step(); }
+    double time() const override { return setup_.engine->time(); }
+    bool has_steps() const override { return has_steps_; }
+
+    void run() override {
+        guarded([&] { sim_.run(); });
+    }
+    const char* advance(std::uint64_t max_step, double max_time) override {
+        const char* why = nullptr;
+        guarded([&] { why = sim_.advance(max_step, max_time); });
+        return why;
+    }
+    void close(const char* ended_by) override {
+        guarded([&] { sim_.close(ended_by); });
+        commit_trajectories();
+    }
+    bool closed() const override { return sim_.closed(); }
+    const char* stopped_by() const override { return sim_.stopped_by(); }
+
+    void add_operation(Trigger trigger, std::function<void()> act) override {
+        sim_.add_operation(trigger, std::move(act));
+    }
+    void set_between_advances(std::function<void()> f) override {
+        sim_.set_between_advances(std::move(f));
+    }
+    void add_trajectory(const std::filesystem::path& path, const std::string& format,
+                        Trigger trigger) override {
+        auto t = std::make_shared<ScriptTrajectory<D>>(path, format);
+        trajectories_.push_back(t);
+        RunEngine<D>& engine = *setup_.engine;
+        t->append(engine.frame()); // the start, as the run's own trajectory has it
+        sim_.add_operation(trigger, [t, &engine] { t->append(engine.frame()); });
+    }
+
+    const std::vector<std::string>& log_names() const override { return sim_.log_names(); }
+    const std::vector<double>& last_log_row() const override { return sim_.last_log_row(); }
+
+    FrameArrays frame() override {
+        const Frame<D> f = setup_.engine->frame();
+        const ParticleStore<D>& p = f.particles;
+        FrameArrays a;
+        a.dimension = D;
+        a.time = f.time;
+        a.step = f.step;
+        for (int d = 0; d < D; ++d) a.box[static_cast<std::size_t>(d)] = f.box.length(d);
+        for (const Species& s : p.species_table) a.species.push_back(s.name);
+        const std::size_t n = f.size();
+        a.type.resize(n);
+        a.position.assign(3 * n, 0.0);
+        a.velocity.assign(3 * n, 0.0);
+        a.radius.resize(n);
+        a.mass.resize(n);
+        a.image.assign(3 * n, 0);
+        if (f.has_director()) a.director.assign(3 * n, 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t k = p.tag[i];
+            a.type[k] = p.species[i];
+            a.radius[k] = p.radius(i);
+            a.mass[k] = p.mass(i);
+            const auto img = f.image(i);
+            for (int d = 0; d < D; ++d) {
+                a.position[3 * k + d] = p.position[i][d];
+                a.velocity[3 * k + d] = p.velocity[i][d];
+                a.image[3 * k + d] = img[static_cast<std::size_t>(d)];
+                if (f.has_director()) a.director[3 * k + d] = f.director(i)[d];
+            }
+        }
+        return a;
+    }
+
+    ~RunOf() override { commit_trajectories(); }
+
+  private:
+    // A failed run (RunError) keeps the script's trajectories too, as the run's own.
+    template <class F> void guarded(F&& f) {
+        try {
+            f();
+        } catch (const RunError&) {
+            commit_trajectories();
+            throw;
+        }
+    }
+    void commit_trajectories() {
+        for (auto& t : trajectories_) t->commit();
+    }
+
+    RunConfig config_;
+    RunOptions options_;
+    EngineSetup<D> setup_;
+    Simulation<D> sim_;
+    bool has_steps_;
+    std::vector<std::shared_ptr<ScriptTrajectory<D>>> trajectories_;
+};
+
+} // namespace
+
+std::unique_ptr<Run> make_run(const RunConfig& config, const RunOptions& options,
+                              std::ostream& console) {
+    if (config.dimension == 2) return std::make_unique<RunOf<2>>(config, options, console);
+    return std::make_unique<RunOf<3>>(config, options, console);
+}
+
+} // namespace pedesis
