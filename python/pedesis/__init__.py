@@ -21,11 +21,13 @@ import inspect as _inspect
 
 from . import _pedesis
 from ._pedesis import Evolver, Gas, InputError, Plugin, RunError, System
+from .simulation import Callback, GSDWriter, Periodic, Simulation, XYZWriter
 
 __all__ = [
     "System", "Evolver", "Dump", "Gas", "Plugin", "InputError", "RunError",
     "HarmonicForce", "WcaForce", "LjForce", "SelfPropulsion", "PolarAlign", "BrownianIntegrator",
     "BrownianRotIntegrator", "LangevinIntegrator", "NVEIntegrator", "builder",
+    "Simulation", "Periodic", "GSDWriter", "XYZWriter", "Callback",
 ]
 
 def _plugin_class(entry):

@@ -7,4 +7,5 @@ PYBIND11_MODULE(_pedesis, m) {
     pedesis::python::register_errors(m);
     pedesis::python::bind_soft(m);
     pedesis::python::bind_gas(m);
+    pedesis::python::bind_run(m);
 }

@@ -50,6 +50,9 @@ struct SteppedStats {
     std::uint64_t late_collisions = 0;     // resolved from an overlap at a segment start
     std::uint64_t chained_events = 0;      // events of a particle that already had one that step
     std::uint32_t most_events_in_step = 0; // by one particle in one step
+    // Checkpoints store the struct's bytes: a named, zeroed filler instead of padding, whose
+    // bytes would be whatever memory held (the same run would write different files).
+    std::uint32_t zero_ = 0;
 };
 
 template <int D> class SteppedEngine {

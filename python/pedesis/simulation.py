@@ -1,0 +1,137 @@
+"""pedesis.Simulation: any engine's run from a config file, driven by the same loop as
+`pedesis run` (the same log, frames, checkpoints and summary), with writers and
+callbacks of the script's own on triggers.
+
+    sim = pedesis.Simulation.from_file("examples/kob_andersen.toml", out="runs/ka")
+    sim.writers.append(pedesis.GSDWriter("runs/ka/extra.gsd", pedesis.Periodic(steps=500)))
+    sim.callbacks.append(pedesis.Callback(lambda: print(sim.log["temperature"]),
+                                          pedesis.Periodic(time=1.0)))
+    sim.run(steps=1000)   # 1000 more steps (or until the config's stop condition)
+    sim.run()             # on to the config's stop condition, then the end of the run
+"""
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+from . import _pedesis
+
+
+@dataclass(frozen=True)
+class Periodic:
+    """Fires every `steps` time steps or every `time` of simulated time (one of them), on a
+    grid anchored at step 0 / t = 0. The event engine has no steps: give it time."""
+    steps: Optional[int] = None
+    time: Optional[float] = None
+
+
+@dataclass(frozen=True)
+class GSDWriter:
+    """A GSD trajectory (HOOMD-blue's format) of the script's own, a frame at each firing."""
+    path: str
+    trigger: Periodic
+
+
+@dataclass(frozen=True)
+class XYZWriter:
+    """An extended-XYZ trajectory of the script's own, a frame at each firing."""
+    path: str
+    trigger: Periodic
+
+
+@dataclass(frozen=True)
+class Callback:
+    """Calls fn() at each firing (not at the run's stop, like the run's own frames)."""
+    fn: Callable[[], None]
+    trigger: Periodic
+
+
+class _Registered(list):
+    """A list whose append registers the item with the run at once."""
+
+    def __init__(self, register):
+        super().__init__()
+        self._register = register
+
+    def append(self, item):
+        self._register(item)
+        super().append(item)
+
+
+class Simulation:
+    """A run of any engine (event, stepped, brownian, langevin, nve) from a config file.
+
+    The run directory is the CLI's: log.csv, the config's frame formats, checkpoint.bin,
+    summary.json. run() goes on to the config's stop condition and writes the end of the
+    run; run(steps=...) or run(time=...) advance that much more (never past the stop
+    condition); close() writes the end of a run stopped early. `log` is the last log row
+    by quantity name, `frame()` the current state as numpy arrays in id order.
+    """
+
+    def __init__(self, run):
+        self._run = run
+        self.writers = _Registered(self._add_writer)
+        self.callbacks = _Registered(self._add_callback)
+
+    @classmethod
+    def from_file(cls, config, out=None, restart=None, quiet=True):
+        """The run of a TOML config (docs/config.md). out: the run directory (default
+        runs/<config name>); restart: a checkpoint.bin to continue from; quiet: no
+        console lines (the CLI prints them)."""
+        import os
+        if out is None:
+            out = os.path.join("runs", os.path.splitext(os.path.basename(str(config)))[0])
+        return cls(_pedesis._Run(str(config), str(out), None if restart is None else
+                                 str(restart), quiet))
+
+    def _add_writer(self, w):
+        formats = {GSDWriter: "gsd", XYZWriter: "xyz"}
+        if type(w) not in formats:
+            raise _pedesis.InputError(f"Simulation.writers: {w!r} is not a GSDWriter or "
+                                      "XYZWriter")
+        self._run.add_trajectory(str(w.path), formats[type(w)], w.trigger.steps,
+                                 w.trigger.time)
+
+    def _add_callback(self, c):
+        if not isinstance(c, Callback):
+            raise _pedesis.InputError(f"Simulation.callbacks: {c!r} is not a Callback")
+        self._run.add_callback(c.fn, c.trigger.steps, c.trigger.time)
+
+    def run(self, steps=None, time=None):
+        """Without arguments: on to the config's stop condition, then the end of the run
+        (last frame, checkpoint, summary). With steps or time: that much more, or less if
+        the stop condition comes first (then the end of the run too). Returns the stop
+        condition's name once it is met, else None. The GIL is released; Ctrl-C stops at
+        the next trigger with the state intact."""
+        why = self._run.advance(steps, time)
+        if why is not None and not self._run.closed:
+            self._run.close("")
+        return why
+
+    def close(self):
+        """Writes the end of the run (last frame, checkpoint, summary) if not done yet."""
+        if not self._run.closed:
+            self._run.close("script")
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if exc[0] is None:
+            self.close()
+        return False
+
+    @property
+    def log(self):
+        """The last row of log.csv as {quantity: value} (empty before the first)."""
+        return dict(zip(self._run.log_names, self._run.last_log_row))
+
+    def frame(self):
+        """The current state: dict of numpy arrays in id order (position, velocity, type,
+        radius, mass, image, and director for soft runs) plus time, step, box, species."""
+        return self._run.frame()
+
+    step = property(lambda self: self._run.step, doc="time steps so far (collisions for "
+                    "the event engine)")
+    time = property(lambda self: self._run.time, doc="simulated time")
+    dimension = property(lambda self: self._run.dimension)
+    stopped_by = property(lambda self: self._run.stopped_by,
+                          doc="the config's stop condition once met, else None")
