@@ -118,25 +118,24 @@ def _hard_parameters(run):
     return ", ".join(parts)
 
 
-# the parameters that set the physics of each plug-in, with the symbols of docs/engines.md
-_SYMBOLS = {
-    "harmonic": (("k", "k"), ("a", "a")),
-    "wca": (("epsilon", "eps"), ("sigma", "sigma")),
-    "lj": (("epsilon", "eps"), ("sigma", "sigma"), ("cutoff", "r_c/sigma")),
-    "self_propulsion": (("alpha", "alpha"),),
-    "polar_align": (("J", "J"), ("a", "a")),
-    "brownian": (("T", "T"), ("gamma", "gamma")),
-    "brownian_rotation": (("T", "T_r"), ("gamma", "gamma_r")),
-    "langevin": (("T", "T"), ("gamma", "gamma")),
-}
+def _value(v):
+    """A plug-in parameter as the config gives it: a number, a per-species table, a flag."""
+    if isinstance(v, bool):
+        return "on" if v else "off"
+    return number(v)
 
 
 def _soft_parameters(run):
     parts = []
     for table in ("force", "torque", "integrator"):
         for p in run.plugins(table):
+            # every parameter the config gives, by its config key (the plug-in catalogue's
+            # names, docs/engines.md), so that no second list of plug-ins lives here
             name = p.get("name", "?")
-            keys = [f"{sym} {number(p[k])}" for k, sym in _SYMBOLS.get(name, ()) if k in p]
+            keys = [f"{k} {_value(v)}" for k, v in p.items()
+                    if k not in ("name", "pairs") and isinstance(v, (int, float, dict))]
+            if p.get("pairs"):
+                keys.append(f"{len(p['pairs'])} pair(s) set apart")
             parts.append(name + (" " + ", ".join(keys) if keys else ""))
     dt = run.config.get("run", {}).get("dt")
     if dt is not None:
