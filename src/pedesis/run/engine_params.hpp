@@ -2,7 +2,7 @@
 // The hard-particle engines' parameters as a run config gives them: one translation
 // for `pedesis run`, restarts and the Python module.
 #include "pedesis/event/event_engine.hpp"
-#include "pedesis/io/run_config.hpp"
+#include "pedesis/setup/run_config.hpp"
 #include "pedesis/stepped/stepped_engine.hpp"
 
 namespace pedesis {

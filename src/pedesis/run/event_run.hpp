@@ -2,9 +2,9 @@
 // The event-driven engine's run: builds (or restores) the engine from a config and
 // measures what its run directory holds (log columns, speed histogram, summary); the
 // Simulation drives it.
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/run/run_options.hpp"
 #include "pedesis/run/simulation.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <ostream>
 

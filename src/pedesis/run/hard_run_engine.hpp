@@ -2,11 +2,11 @@
 // What the event and stepped engines' runs share: a time-grid schedule from [output],
 // the run record kept in the checkpoint (frame numbers, pressure integrals, the speed
 // histogram) and the files of a hard-particle run directory.
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/run/hard_run_output.hpp"
 #include "pedesis/run/run_engine.hpp"
 #include "pedesis/run/run_options.hpp"
 #include "pedesis/run/simulation.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <ostream>
 

@@ -6,10 +6,10 @@
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_engine.hpp" // EventCounters: the running totals of both engines
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/observe/speed_histogram.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/run/run_options.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -2,9 +2,9 @@
 // A run of any engine in any dimension, built from a config: what the command line and
 // the Python module drive. The engine is chosen by `dynamics`, the dimension by
 // `dimension`; the loop is the one Simulation of simulation.hpp.
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/run/run_options.hpp"
 #include "pedesis/run/trigger.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <array>
 #include <cstdint>

@@ -4,7 +4,7 @@
 // the last neighbour-list build (rebuilding from them gives the same rows, hence the
 // same summation order) and the driver's own bookkeeping, so a restart continues bit for
 // bit.
-#include "pedesis/io/run_config.hpp"
+#include "pedesis/setup/run_config.hpp"
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/soft_state.hpp"
 

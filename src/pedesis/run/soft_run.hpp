@@ -2,9 +2,9 @@
 // The soft / active engine's run (dynamics = brownian, langevin or nve): builds (or
 // restores) the state and the evolver with the config's plug-ins and measures its log
 // columns and summary; the Simulation drives it.
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/run/run_options.hpp"
 #include "pedesis/run/simulation.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <ostream>
 

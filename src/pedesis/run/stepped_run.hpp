@@ -3,9 +3,9 @@
 // the engine and measures the event engine's log columns plus step, v_rms, mean_speed
 // and the notebook's running pressure, so that plots and movies work for both; the
 // Simulation drives it.
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/run/run_options.hpp"
 #include "pedesis/run/simulation.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <ostream>
 

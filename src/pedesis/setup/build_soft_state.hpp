@@ -3,7 +3,7 @@
 // from the [initial] file (the ABP tutorial's JSON, which may also give the box, the
 // species and the directors) or are placed as for any other engine; a director the file
 // does not give is a seeded random unit vector.
-#include "pedesis/io/run_config.hpp"
+#include "pedesis/setup/run_config.hpp"
 #include "pedesis/soft/soft_state.hpp"
 
 namespace pedesis {

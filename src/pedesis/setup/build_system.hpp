@@ -3,8 +3,8 @@
 // (lattice, random, a point, or a file) and draws its velocities.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/particles.hpp"
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/observe/thermo.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 namespace pedesis {
 

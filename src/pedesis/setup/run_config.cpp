@@ -1,4 +1,4 @@
-#include "pedesis/io/run_config.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/config_table.hpp"
