@@ -17,6 +17,7 @@
 //   have grown by a third of the skin, the kinetic energy has drifted 2%, or N
 //   collisions have passed.
 #include "pedesis/core/box.hpp"
+#include "pedesis/core/collision_counters.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_queue.hpp"
 #include "pedesis/spatial/cell_list.hpp"
@@ -54,24 +55,6 @@ struct GrowthStatus {
     double last_pressure = 0.0; // reduced pressure Z over the last window (0: none yet)
     std::uint64_t steps = 0;    // growth steps (whole-system list rebuilds) so far
 };
-
-// Running totals since the engine was created (or restored).
-template <int D> struct EventCounters {
-    std::uint64_t pair_collisions = 0;
-    std::uint64_t wall_collisions = 0;
-    std::uint64_t list_rebuilds = 0;
-    std::uint64_t stale_events = 0;
-    Vec<D> virial{};                                     // sum over collisions of J n_a r_ij,a
-    std::array<std::array<double, 2>, D> wall_impulse{}; // momentum given to each wall
-    double energy_lost = 0.0;
-};
-
-// Sum over the axes of the collision virial: sum over collisions of J n . r_ij.
-template <int D> double virial_trace(const EventCounters<D>& c) {
-    double w = 0.0;
-    for (int a = 0; a < D; ++a) w += c.virial[a];
-    return w;
-}
 
 enum class StopReason { time, collisions, energy, no_events, grown };
 

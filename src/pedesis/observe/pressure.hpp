@@ -7,7 +7,7 @@
 // (N T / V when nothing is conserved). The reported pressure is the mean over axes (all
 // equal in equilibrium).
 #include "pedesis/core/box.hpp"
-#include "pedesis/event/event_engine.hpp"
+#include "pedesis/core/collision_counters.hpp"
 
 namespace pedesis {
 

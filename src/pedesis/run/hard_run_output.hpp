@@ -4,8 +4,8 @@
 // histogram, and the common part of summary.json and of the printed summary. Each
 // engine's run adds its own columns and keys; the Simulation writes the files.
 #include "pedesis/core/box.hpp"
+#include "pedesis/core/collision_counters.hpp"
 #include "pedesis/core/particles.hpp"
-#include "pedesis/event/event_engine.hpp" // EventCounters: the running totals of both engines
 #include "pedesis/observe/speed_histogram.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/run/run_options.hpp"

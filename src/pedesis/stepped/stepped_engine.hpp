@@ -28,8 +28,8 @@
 // position (a "late" collision). Energy is conserved by every collision, late or not,
 // and momentum too apart from what the walls take, to rounding.
 #include "pedesis/core/box.hpp"
+#include "pedesis/core/collision_counters.hpp"
 #include "pedesis/core/particles.hpp"
-#include "pedesis/event/event_engine.hpp" // EventCounters: the running totals both engines keep
 #include "pedesis/spatial/cell_list.hpp"
 
 #include <array>

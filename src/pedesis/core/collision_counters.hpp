@@ -1,0 +1,30 @@
+#pragma once
+// The running totals of a hard-particle engine (event-driven or time-stepped): collisions,
+// the collision virial and the momentum given to the walls, from which both engines'
+// runs measure the pressure the same way (observe/pressure.hpp).
+#include "pedesis/core/vec.hpp"
+
+#include <array>
+#include <cstdint>
+
+namespace pedesis {
+
+// Running totals since the engine was created (or restored).
+template <int D> struct EventCounters {
+    std::uint64_t pair_collisions = 0;
+    std::uint64_t wall_collisions = 0;
+    std::uint64_t list_rebuilds = 0;
+    std::uint64_t stale_events = 0;
+    Vec<D> virial{};                                     // sum over collisions of J n_a r_ij,a
+    std::array<std::array<double, 2>, D> wall_impulse{}; // momentum given to each wall
+    double energy_lost = 0.0;
+};
+
+// Sum over the axes of the collision virial: sum over collisions of J n . r_ij.
+template <int D> double virial_trace(const EventCounters<D>& c) {
+    double w = 0.0;
+    for (int a = 0; a < D; ++a) w += c.virial[a];
+    return w;
+}
+
+} // namespace pedesis
