@@ -1,9 +1,9 @@
 #include "run_command.hpp"
 
 #include "pedesis/core/error.hpp"
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <fmt/format.h>
 

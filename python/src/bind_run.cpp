@@ -4,8 +4,8 @@
 #include "errors.hpp"
 
 #include "pedesis/core/error.hpp"
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/run/run.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>

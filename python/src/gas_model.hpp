@@ -4,7 +4,7 @@
 // advanced until a time, a collision count or a number of steps, and measured. Nothing
 // here knows Python.
 #include "pedesis/core/species.hpp"
-#include "pedesis/io/run_config.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <cstdint>
 #include <functional>

@@ -2,11 +2,11 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/io/tutorial_json.hpp"
 #include "pedesis/io/vtp_writer.hpp"
 #include "pedesis/observe/soft_observables.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
+#include "pedesis/setup/run_config.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
 #include <fmt/format.h>

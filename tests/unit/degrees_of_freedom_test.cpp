@@ -5,10 +5,10 @@
 // centre-of-mass frame; species sharing the conserved components by mass; and
 // Maxwell-Boltzmann starts scaled to the requested temperature under that rule. The
 // expected numbers are computed here by hand from the definitions in docs/engines.md.
-#include "pedesis/io/run_config.hpp"
 #include "pedesis/observe/pressure.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/setup/build_system.hpp"
+#include "pedesis/setup/run_config.hpp"
 
 #include <gtest/gtest.h>
 
