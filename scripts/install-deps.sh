@@ -10,7 +10,7 @@ packages=(
   libomp-dev python3-numpy python3-gsd
   libcairo2-dev ffmpeg python3-matplotlib
   python3-dev pybind11-dev python3-pytest
-  python3-ase python3-vtk9
+  python3-ase python3-vtk9 zlib1g-dev
 )
 
 missing=()

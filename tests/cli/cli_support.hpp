@@ -20,9 +20,14 @@ struct CliResult {
     std::string output; // stdout and stderr together
 };
 
-inline CliResult run_pedesis(const std::string& args, const std::filesystem::path& cwd) {
+// With timeout_s > 0 the run is killed after that many seconds (exit code 137): a hang
+// fails the test instead of stalling the suite.
+inline CliResult run_pedesis(const std::string& args, const std::filesystem::path& cwd,
+                             int timeout_s = 0) {
+    const std::string limit =
+        timeout_s > 0 ? "timeout -s KILL " + std::to_string(timeout_s) + " " : std::string();
     const std::string cmd =
-        "cd '" + cwd.string() + "' && '" + PEDESIS_BINARY + "' " + args + " 2>&1";
+        "cd '" + cwd.string() + "' && " + limit + "'" + PEDESIS_BINARY + "' " + args + " 2>&1";
     CliResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;

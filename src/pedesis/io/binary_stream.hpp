@@ -31,6 +31,17 @@ inline void put(std::ostream& out, const std::string& s) {
     out.write(s.data(), static_cast<std::streamsize>(s.size()));
 }
 
+// Bytes left in the stream: a length read from the file may not promise more (a corrupt
+// or crafted length must fail here, not in a huge allocation).
+inline std::uint64_t remaining(std::istream& in) {
+    const auto here = in.tellg();
+    if (here < 0) return 0;
+    in.seekg(0, std::ios::end);
+    const auto end = in.tellg();
+    in.seekg(here);
+    return end > here ? static_cast<std::uint64_t>(end - here) : 0;
+}
+
 template <class T> void get(std::istream& in, T& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     in.read(reinterpret_cast<char*>(&v), sizeof(T));
@@ -40,8 +51,9 @@ template <class T> void get(std::istream& in, T& v) {
 template <class T> void get(std::istream& in, std::vector<T>& v) {
     std::uint64_t n = 0;
     get(in, n);
-    if (n > (std::uint64_t{1} << 40) / sizeof(T))
-        throw InputError("checkpoint: corrupt array length");
+    if (n > remaining(in) / sizeof(T))
+        throw InputError("checkpoint: corrupt array length " + std::to_string(n) +
+                         " (more than the file holds)");
     v.resize(n);
     in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
     if (!in) throw InputError("checkpoint: file is truncated or corrupt");
@@ -50,7 +62,7 @@ template <class T> void get(std::istream& in, std::vector<T>& v) {
 inline void get(std::istream& in, std::string& s) {
     std::uint64_t n = 0;
     get(in, n);
-    if (n > (1u << 20)) throw InputError("checkpoint: corrupt string length");
+    if (n > (1u << 20) || n > remaining(in)) throw InputError("checkpoint: corrupt string length");
     s.resize(n);
     in.read(s.data(), static_cast<std::streamsize>(n));
     if (!in) throw InputError("checkpoint: file is truncated or corrupt");

@@ -33,9 +33,7 @@ std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& pat
                                                 const RunConfig& c, HardRunRecord<D>& s) {
     return load_hard_checkpoint<EventEngine<D>>(
         path, run_checkpoint_magic, "not a pedesis run checkpoint", event_params(c), c, s,
-        [](const EventEngine<D>& e) -> const std::vector<Species>& {
-            return e.lazy_particles().species_table;
-        });
+        [](const EventEngine<D>& e) -> const ParticleStore<D>& { return e.lazy_particles(); });
 }
 
 // The event-driven engine as the Simulation drives it. Its clock is continuous: it

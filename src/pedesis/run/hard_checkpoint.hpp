@@ -5,6 +5,8 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
+#include "pedesis/io/checkpoint_file.hpp"
+#include "pedesis/run/checkpoint_checks.hpp"
 #include "pedesis/run/hard_run_output.hpp"
 
 #include <cstdint>
@@ -18,33 +20,34 @@ namespace pedesis {
 template <class Engine, int D>
 void save_hard_checkpoint(const std::filesystem::path& path, std::uint64_t magic, const Engine& e,
                           const HardRunRecord<D>& s) {
-    write_file_atomically(
-        path,
-        [&](std::ostream& out) {
-            binary::put(out, magic);
-            e.save(out);
-            s.save(out);
-        },
-        true);
+    CheckpointWriter file(path);
+    binary::put(file.out(), magic);
+    e.save(file.out());
+    s.save(file.out());
+    file.commit();
 }
 
 // Restores the engine with the config's parameters and checks the config's species and
-// box against the checkpoint's; `species_of(engine)` gives the engine's species table.
+// box against the checkpoint's; `particles_of(engine)` gives the engine's particle store,
+// whose contents are checked too (checkpoint_checks.hpp).
 // Every fault is an InputError naming the file; `not_this` says what a foreign file is.
-template <class Engine, class Params, int D, class SpeciesOf>
+template <class Engine, class Params, int D, class ParticlesOf>
 std::unique_ptr<Engine> load_hard_checkpoint(const std::filesystem::path& path, std::uint64_t magic,
                                              const char* not_this, const Params& params,
                                              const RunConfig& c, HardRunRecord<D>& s,
-                                             SpeciesOf species_of) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot open checkpoint");
+                                             ParticlesOf particles_of) {
+    CheckpointReader file(path);
+    std::istream& in = file.in();
     try {
         std::uint64_t word = 0;
         binary::get(in, word);
         if (word != magic) throw InputError(not_this);
         auto e = std::make_unique<Engine>(Engine::load(in, params));
         s.load(in);
-        check_checkpoint_matches(species_of(*e), e->box(), c);
+        file.finish();
+        // the event engine keeps each particle at its own last event: not wrapped
+        check_restored_particles(particles_of(*e), e->box(), false);
+        check_checkpoint_matches(particles_of(*e).species_table, e->box(), c);
         return e;
     } catch (const InputError& err) {
         throw InputError(path.string() + ": " + err.what());

@@ -3,6 +3,10 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
+#include "pedesis/io/checkpoint_file.hpp"
+#include "pedesis/run/checkpoint_checks.hpp"
+
+#include <cmath>
 
 #include <fstream>
 
@@ -30,32 +34,30 @@ template <class State, class F> void for_each_array(State& s, F&& f) {
 template <int D>
 void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>& s,
                           const Evolver<D>& evolver, const SoftRunBook<D>& book) {
-    write_file_atomically(
-        path,
-        [&](std::ostream& out) {
-            binary::put_header(out, soft_checkpoint_magic, soft_checkpoint_version, D);
-            binary::put(out, s.box);
-            binary::put(out, s.p.species_table);
-            binary::put(out, s.step);
-            binary::put(out, s.time);
-            for_each_array(s, [&](const auto& v) { binary::put(out, v); });
-            binary::put(out, evolver.list_reference());
-            binary::put(out, evolver.list_builds());
-            binary::put(out, book.start);
-            binary::put(out, book.frames);
-            binary::put(out, book.samples);
-            binary::put(out, book.sum_pressure);
-            binary::put(out, book.sum_polar_order);
-            binary::put(out, book.sum_temperature);
-        },
-        true);
+    CheckpointWriter file(path);
+    std::ostream& out = file.out();
+    binary::put_header(out, soft_checkpoint_magic, soft_checkpoint_version, D);
+    binary::put(out, s.box);
+    binary::put(out, s.p.species_table);
+    binary::put(out, s.step);
+    binary::put(out, s.time);
+    for_each_array(s, [&](const auto& v) { binary::put(out, v); });
+    binary::put(out, evolver.list_reference());
+    binary::put(out, evolver.list_builds());
+    binary::put(out, book.start);
+    binary::put(out, book.frames);
+    binary::put(out, book.samples);
+    binary::put(out, book.sum_pressure);
+    binary::put(out, book.sum_polar_order);
+    binary::put(out, book.sum_temperature);
+    file.commit();
 }
 
 template <int D>
 void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c, SoftState<D>& s,
                           Evolver<D>& evolver, SoftRunBook<D>& book) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string() + ": cannot open checkpoint");
+    CheckpointReader file(path);
+    std::istream& in = file.in();
     try {
         binary::get_header(in, soft_checkpoint_magic, soft_checkpoint_version, D,
                            "soft-engine (brownian, langevin, nve)");
@@ -75,12 +77,21 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
         binary::get(in, book.sum_pressure);
         binary::get(in, book.sum_polar_order);
         binary::get(in, book.sum_temperature);
+        file.finish();
         const std::size_t n = s.p.position.size();
         if (s.p.velocity.size() != n || s.p.tag.size() != n || s.p.species.size() != n ||
             s.director.size() != n || s.force.size() != n || s.torque.size() != n ||
             s.image.size() != n || book.start.size() != n ||
             (!reference.empty() && reference.size() != n))
             throw InputError("file is corrupt (array lengths differ)");
+        check_restored_particles(s.p, s.box, true);
+        for (std::size_t i = 0; i < n; ++i)
+            for (int a = 0; a < D; ++a)
+                if (!std::isfinite(s.director[i][a]) || !std::isfinite(book.start[i][a]))
+                    throw InputError("corrupt state: particle " + std::to_string(s.p.tag[i]) +
+                                     ": director or start position is not a finite number");
+        if (!std::isfinite(s.time) || s.time < 0.0)
+            throw InputError("corrupt state: the time is not a finite number >= 0");
 
         if (!c.species.empty()) {
             if (c.species.size() != n_species) throw InputError("species do not match " + c.file);

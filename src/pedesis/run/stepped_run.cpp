@@ -33,9 +33,7 @@ std::unique_ptr<SteppedEngine<D>> load_checkpoint(const std::filesystem::path& p
                                                   const RunConfig& c, HardRunRecord<D>& s) {
     return load_hard_checkpoint<SteppedEngine<D>>(
         path, stepped_checkpoint_magic, "not a checkpoint of a stepped run", stepped_params(c), c,
-        s, [](const SteppedEngine<D>& e) -> const std::vector<Species>& {
-            return e.particles().species_table;
-        });
+        s, [](const SteppedEngine<D>& e) -> const ParticleStore<D>& { return e.particles(); });
 }
 
 // Independent speeds the rest of the run will draw, for the suggested dt: N at the
