@@ -45,7 +45,8 @@ TEST_F(BadInput, RestitutionOutsideUnitInterval) {
 }
 
 TEST_F(BadInput, BoxSmallerThanOneParticle) {
-    expect_rejected(small_config("", "length = 0.5"), {"smaller than one particle"});
+    expect_rejected(small_config("", "length = 0.5"),
+                    {"species[0].radius", "does not fit in the box"});
 }
 
 TEST_F(BadInput, NoParticles) {
@@ -94,7 +95,12 @@ TEST_F(BadInput, CorruptCheckpoint) {
 
 TEST_F(BadInput, SpeciesNamesMustFitColumns) {
     expect_rejected(small_config("[[species]]\nname = \"big disk\"\ncount = 1\n"),
-                    {"species[1].name", "without spaces"});
+                    {"species[1].name", "letters A-Z"});
+    // names the config accepted and an output format refused only once the run had started
+    expect_rejected(small_config("[[species]]\nname = \"h\u00e9\"\ncount = 1\n"),
+                    {"bad.toml:", "species[1].name", "letters A-Z"});
+    expect_rejected(small_config("[[species]]\nname = \"\U0001F600\"\ncount = 1\n"),
+                    {"species[1].name", "letters A-Z"});
 }
 
 TEST_F(BadInput, ImpossibleStopCondition) {

@@ -215,6 +215,9 @@ template <int D> Vec<D> read_box(const json& j, const std::string& file) {
         if (!v) w.fail(names[a], "is missing");
         L[a] = positive_number(*v, w, names[a]);
     }
+    // a 3D box given to a 2D run is a mistake, not a detail to drop
+    if (D == 2 && member(j, "Lz"))
+        w.fail("Lz", "is given, but this run is 2D (dimension = 2): remove it or run in 3D");
     return L;
 }
 

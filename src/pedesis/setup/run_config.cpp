@@ -6,10 +6,14 @@
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <set>
+#include <unistd.h>
 
 namespace pedesis {
 
@@ -27,10 +31,17 @@ void read_box(ConfigTable& t, RunConfig& c) {
         c.box_lengths.assign(d, *l);
     else
         throw InputError(c.file + ": [box] needs length (cube) or lengths (one per axis)");
-    for (double l : c.box_lengths)
+    double volume = 1.0;
+    for (double l : c.box_lengths) {
         if (!(l > 0.0))
             throw InputError(box->where(box->has("lengths") ? "lengths" : "length") +
                              ": must be positive");
+        volume *= l;
+    }
+    // a box whose volume overflows has no pressure, density or cell grid
+    if (!(volume < 1e300))
+        throw InputError(box->where(box->has("lengths") ? "lengths" : "length") +
+                         ": the box is too large to simulate (its volume overflows)");
     const auto b = box->strings("boundary", d).value_or(std::vector<std::string>(d, "periodic"));
     for (const auto& s : b) {
         if (s != "periodic" && s != "wall")
@@ -49,6 +60,31 @@ void read_velocity_keys(ConfigTable& t, SpeciesConfig& s, std::size_t d) {
     if (s.speed < 0) throw InputError(t.where("speed") + ": must be >= 0");
     if (s.sigma < 0) throw InputError(t.where("sigma") + ": must be >= 0");
     if (s.temperature < 0) throw InputError(t.where("temperature") + ": must be >= 0");
+    // m v^2 / 2 must stay a number: 1e100 leaves room for any mass a config can give
+    constexpr double fastest = 1e100;
+    if (s.speed > fastest) throw InputError(t.where("speed") + ": must be at most 1e100");
+    if (s.sigma > fastest) throw InputError(t.where("sigma") + ": must be at most 1e100");
+    if (s.temperature > fastest)
+        throw InputError(t.where("temperature") + ": must be at most 1e100");
+    if (s.velocity)
+        for (double v : *s.velocity)
+            if (std::abs(v) > fastest)
+                throw InputError(t.where("velocity") +
+                                 ": each component must be at most 1e100 in size (the kinetic "
+                                 "energy would overflow)");
+}
+
+// A species name is a column of log.csv, a type of GSD and XYZ and a key of JSON: letters,
+// digits and a few marks that every one of those formats takes as they are.
+bool valid_species_name(const std::string& name) {
+    if (name.empty() || name.size() > 64) return false;
+    for (const char ch : name) {
+        const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
+                        (ch >= '0' && ch <= '9') || ch == '_' || ch == '-' || ch == '.' ||
+                        ch == '+';
+        if (!ok) return false;
+    }
+    return true;
 }
 
 void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults) {
@@ -64,20 +100,28 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
         SpeciesConfig s = defaults;
         s.name = t.string("name").value_or(
             std::string(1, static_cast<char>('A' + c.species.size() % 26)));
-        if (s.name.empty() || s.name.find_first_of(" \t\n\",'") != std::string::npos)
-            throw InputError(
-                t.where("name") +
-                ": a species name must be non-empty, without spaces, commas or quotes");
+        if (!valid_species_name(s.name))
+            throw InputError(t.where("name") + ": species name '" + s.name +
+                             "' must be 1 to 64 of the letters A-Z a-z, digits and _ - . + (it "
+                             "names log columns and types in every output format)");
         if (!names.insert(s.name).second)
             throw InputError(t.where("name") + ": duplicate species name '" + s.name + "'");
         if (auto n = t.integer("count")) {
             if (*n <= 0)
                 throw InputError(t.where("count") +
                                  ": must be a positive integer (N = 0 has nothing to simulate)");
+            if (*n > 0xffffffffll)
+                throw InputError(t.where("count") + ": " + std::to_string(*n) +
+                                 " is more particles than the 4294967295 pedesis can number");
             s.count = static_cast<std::size_t>(*n);
         }
         s.radius = t.number("radius", 0.5);
         if (!(s.radius > 0)) throw InputError(t.where("radius") + ": must be positive");
+        for (double l : c.box_lengths)
+            if (!c.soft() && !(2.0 * s.radius < l))
+                throw InputError(t.where("radius") + ": a particle of diameter " +
+                                 fmt::format("{:g}", 2.0 * s.radius) +
+                                 " does not fit in the box (edge " + fmt::format("{:g}", l) + ")");
         auto m = t.number("mass", true);
         s.mass = m.value_or(1.0);
         if (!(s.mass > 0))
@@ -325,6 +369,48 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
     }
 }
 
+// Refuses, before anything is allocated, particle counts that cannot be simulated: more
+// than the 32-bit ids hold, more than the machine's memory (an estimate, per engine), or
+// hard particles that fill more of the box than close packing allows.
+void check_particle_budget(const RunConfig& c) {
+    std::uint64_t n = 0;
+    double filled = 0.0;
+    for (const auto& s : c.species) {
+        if (!s.count) continue;
+        n += *s.count;
+        const double r = s.radius;
+        filled += static_cast<double>(*s.count) * (c.dimension == 2
+                                                       ? std::numbers::pi * r * r
+                                                       : 4.0 / 3.0 * std::numbers::pi * r * r * r);
+    }
+    if (n == 0) return;
+    if (n > 0xffffffffull)
+        throw InputError(fmt::format("{}: [[species]] count: N = {} particles, more than the "
+                                     "4294967295 pedesis can number",
+                                     c.file, n));
+    // bytes per particle at the largest point of a run, from docs/performance.md's
+    // measurements with room to spare (the event engine keeps neighbour lists and events)
+    const double per_particle = c.soft() ? 400.0 : c.dynamics == "stepped" ? 300.0 : 600.0;
+    const double need = static_cast<double>(n) * per_particle;
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+    const double have =
+        pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+    if (have > 0.0 && need > have)
+        throw InputError(fmt::format("{}: [[species]] count: N = {} particles need about {:.3g} GB "
+                                     "({:g} bytes each, an estimate), more than this machine's "
+                                     "{:.3g} GB of memory",
+                                     c.file, n, need / 1e9, per_particle, have / 1e9));
+    if (c.soft() || c.box_lengths.empty()) return;
+    double volume = 1.0;
+    for (double l : c.box_lengths) volume *= l;
+    const double densest = c.dimension == 2 ? 0.9069 : 0.7405; // hexagonal / fcc packing
+    if (filled / volume > densest)
+        throw InputError(fmt::format("{}: [[species]]: the particles would fill {:.4g} of the box; "
+                                     "hard {} cannot fill more than {} of it",
+                                     c.file, filled / volume,
+                                     c.dimension == 2 ? "disks" : "spheres", densest));
+}
+
 } // namespace
 
 namespace {
@@ -368,6 +454,7 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     if (root.has("box") || !(c.soft() && c.initial_file)) read_box(root, c);
     c.species_defaults = defaults;
     read_species(root, c, defaults);
+    check_particle_budget(c);
     if (c.soft())
         read_soft_sections(doc, root, c);
     else
