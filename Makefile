@@ -26,7 +26,7 @@ python: build
 demo: build
 	./$(BUILD)/pedesis run examples/course_1_relaxation.toml --out runs/demo
 	./$(BUILD)/pedesis analyze speed runs/demo
-	./$(BUILD)/pedesis render runs/demo --out runs/demo/movie.mp4
+	./$(BUILD)/pedesis render runs/demo --out runs/demo/movie.mp4 --color speed
 	@echo "demo: speed plot runs/demo/speed_distribution.png, movie runs/demo/movie.mp4"
 
 # ctest runs tests side by side, each with OpenMP threads: passive waiting keeps idle

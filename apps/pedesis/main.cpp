@@ -10,6 +10,8 @@
 
 #include "pedesis/core/error.hpp"
 
+#include <pedesis_version.hpp>
+
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
@@ -18,6 +20,7 @@
 
 int main(int argc, char** argv) {
     CLI::App app{"pedesis: particle dynamics of gases and active matter"};
+    app.set_version_flag("--version", "pedesis " PEDESIS_VERSION " (commit " PEDESIS_COMMIT ")");
     app.require_subcommand(1);
     pedesis::cli::add_run_command(app);
     pedesis::cli::add_init_command(app);

@@ -41,6 +41,15 @@ TEST_F(CliRun, RestartContinuesBitForBit) {
     EXPECT_EQ(read("full/speed_histogram.csv"), read("cont/speed_histogram.csv"));
 }
 
+// (the commit itself is not compared: a binary built before the last commit names the one
+// before it, with local changes)
+TEST_F(CliRun, VersionNamesVersionAndCommit) {
+    const CliResult r = run_pedesis("--version", dir);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.rfind("pedesis 0.1.0 (commit ", 0), 0u) << r.output;
+    EXPECT_NE(r.output.find(")"), std::string::npos) << r.output;
+}
+
 TEST_F(CliRun, FrozenSystemStopsInsteadOfLooping) {
     write("frozen.toml",
           "dimension = 2\n[box]\nlength = 10.0\n[[species]]\ncount = 4\nvelocities = \"zero\"\n"
