@@ -270,6 +270,18 @@ TEST_F(Render, SoftRunGsdWithDirectors) {
     EXPECT_EQ(read_png(dir / "frames" / "frame_000002.png").width, 300);
 }
 
+// A radius of 1e308 made render hang inside Cairo, deaf to SIGINT (issue 14): the disk
+// is drawn as one covering the picture, within seconds.
+TEST_F(Render, HugeRadiusDrawsInsteadOfHanging) {
+    fs::create_directories(dir / "huge");
+    write("huge/trajectory.xyz", "2\nLattice=\"10 0 0 0 10 0 0 0 1\" Origin=\"-5 -5 -0.5\" "
+                                 "Properties=species:S:1:pos:R:3:radius:R:1 Time=0 pbc=\"T T F\"\n"
+                                 "A 0 0 0 1e308\nB 2 2 0 0.5\n");
+    const auto r = run_pedesis("render huge --out frames/ --size 64x64", dir, 30);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "frames" / "frame_000000.png")) << r.output;
+}
+
 TEST_F(Render, MissingOrCorruptRunDirectoriesExitWith2) {
     run_gas();
     auto r = run_pedesis("render nowhere --out f/", dir);

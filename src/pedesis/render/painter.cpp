@@ -124,8 +124,11 @@ void draw_particles(cairo_t* cr, const Layout& L, const Frame& f, const Style& s
     const bool arrows = s.arrows && !f.director.empty();
     const double z_lo = s.slab ? s.slab->lo : f.box_lo[2];
     const double z_range = s.slab ? s.slab->hi - s.slab->lo : f.box_length[2];
+    // A disk wider than the whole picture looks the same as one just covering it; Cairo
+    // would approximate a huge one with ever more segments (a radius of 1e308 never ended).
+    const double widest = 2.0 * (L.box_w + L.box_h);
     for (std::size_t i : order) {
-        const double r = f.radius[i] * L.scale;
+        const double r = std::min(f.radius[i] * L.scale, widest);
         if (!(r > 0.0)) continue;
         Rgb fill = particle_colour(f, i, s);
         if (f.dimension == 3 && z_range > 0.0)
