@@ -52,6 +52,17 @@ TEST_F(HostileInput, AbsurdSpeedsAndSizes) {
         {"box.length", "too large"});
 }
 
+// The same through an initial file, which the config's checks do not see: the engine
+// refuses it, naming the file and the particle.
+TEST_F(HostileInput, AbsurdSpeedInAnInitialFile) {
+    write("fast.json", R"({"system": {"box": {"Lx": 20, "Ly": 20}, "particles": [)"
+                       R"({"id": 0, "type": 0, "r": [0, 0], "v": [1e200, 0]},)"
+                       R"({"id": 1, "type": 0, "r": [3, 0], "v": [0, 1]}]}})");
+    expect_refused_quickly("dimension = 2\n[box]\nlength = 20.0\n[[species]]\nname = \"A\"\n"
+                           "radius = 0.5\n[initial]\nfile = \"fast.json\"\n[run]\ntime = 1.0\n",
+                           {"fast.json: particle 0", "speed above 1e100"});
+}
+
 // A JSON box with Lz was silently dropped in a 2D run.
 TEST_F(HostileInput, ThreeDimensionalBoxInATwoDimensionalRun) {
     write("init.json",

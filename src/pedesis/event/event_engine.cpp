@@ -63,6 +63,10 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     for (std::size_t i = 0; i < p_.size(); ++i) {
         if (!all_finite(p_.position[i]) || !all_finite(p_.velocity[i]))
             throw InputError(tag_name(p_.tag[i]) + ": position or velocity is not a finite number");
+        // m v^2 / 2 must stay a number (a speed of 1e200 ran forever with an infinite energy)
+        if (norm2(p_.velocity[i]) > 1e200)
+            throw InputError(tag_name(p_.tag[i]) + ": speed above 1e100 (the kinetic energy would "
+                                                   "overflow)");
         if (inv_mass_[p_.species[i]] == 0.0) p_.velocity[i] = Vec<D>{}; // obstacles never move
     }
 

@@ -49,8 +49,10 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         if (o_.restart) {
             engine_ = load_checkpoint<D>(*o_.restart, c_, record_);
         } else {
-            engine_ = std::make_unique<EventEngine<D>>(build_particles<D>(c_, box), box,
-                                                       event_params(c_));
+            engine_ = this->with_source([&] {
+                return std::make_unique<EventEngine<D>>(build_particles<D>(c_, box), box,
+                                                        event_params(c_));
+            });
             record_.initial_kinetic = engine_->kinetic_energy();
             record_.last_temperature =
                 measure_kinetics(engine_->lazy_particles(), box, hard_particle_dynamics)

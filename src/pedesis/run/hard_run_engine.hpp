@@ -33,6 +33,19 @@ template <int D> class HardRunEngine : public RunEngine<D> {
     }
 
   protected:
+    // Builds the engine from the config's particles; an engine's refusal ("particle 3:
+    // speed above 1e100") names the file the particles came from.
+    template <class Make> auto with_source(Make make) const {
+        try {
+            return make();
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            for (const std::string& named : {c_.file, c_.initial_file.value_or(c_.file)})
+                if (what.rfind(named + ":", 0) == 0) throw; // names its file already
+            throw InputError(c_.initial_file.value_or(c_.file) + ": " + what);
+        }
+    }
+
     const RunConfig& c_;
     const RunOptions& o_;
     std::ostream& console_;

@@ -81,7 +81,9 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
             ParticleStore<D> p = build_particles<D>(c_, box);
             samples_ = run_speed_samples(p, box, c_, 0.0, 0, 0);
             check_time_step(p, c_.dt, c_.max_move, c_.dt_where, samples_);
-            engine_ = std::make_unique<SteppedEngine<D>>(std::move(p), box, stepped_params(c_));
+            engine_ = this->with_source([&] {
+                return std::make_unique<SteppedEngine<D>>(std::move(p), box, stepped_params(c_));
+            });
             record_.initial_kinetic = engine_->kinetic_energy();
             record_.last_temperature =
                 measure_kinetics(engine_->particles(), box, hard_particle_dynamics).temperature();
