@@ -4,6 +4,7 @@
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run.hpp"
 #include "pedesis/setup/run_config.hpp"
+#include "thread_choice.hpp"
 
 #include <fmt/format.h>
 
@@ -20,6 +21,7 @@ struct RunArgs {
     std::string out;
     std::string restart;
     bool list_quantities = false;
+    int threads = 0; // 0: choose (thread_choice.hpp)
 };
 
 // One line per quantity: name, unit, engines, meaning.
@@ -41,6 +43,10 @@ void add_run_command(CLI::App& app) {
     auto* list = cmd->add_flag("--list-quantities", a->list_quantities,
                                "Print every quantity log.csv can hold ([log] quantities) and exit");
     config->excludes(list);
+    cmd->add_option("--threads", a->threads,
+                    "OpenMP threads (default: the idle cores, or OMP_NUM_THREADS); results are "
+                    "the same for any number")
+        ->check(CLI::Range(1, 1024));
     cmd->add_option("--out", a->out, "Run directory (default: runs/<config name>)");
     cmd->add_option("--restart", a->restart,
                     "Continue exactly from a checkpoint.bin of an earlier run");
@@ -57,6 +63,7 @@ void add_run_command(CLI::App& app) {
                         ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
                         : std::filesystem::path(a->out);
         if (!a->restart.empty()) o.restart = a->restart;
+        choose_threads(a->threads > 0 ? std::optional<int>(a->threads) : std::nullopt, std::cout);
         make_run(config, o, std::cout)->run();
     });
 }

@@ -4,6 +4,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
 using namespace pedesis::test;
 
 namespace {
@@ -48,6 +53,36 @@ TEST_F(CliRun, VersionNamesVersionAndCommit) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(r.output.rfind("pedesis 0.1.0 (commit ", 0), 0u) << r.output;
     EXPECT_NE(r.output.find(")"), std::string::npos) << r.output;
+}
+
+// With another process keeping cores busy, a run takes the idle ones and says so (OpenMP's
+// spinning threads on a shared core made runs several times slower); --threads chooses.
+// The results are the same for any thread count (the engines' promise, tested elsewhere).
+TEST_F(CliRun, BusyCoresAreLeftAloneUnlessThreadsAreChosen) {
+    write("run.toml", config_with_time(0.5));
+    const unsigned cores = std::thread::hardware_concurrency();
+    std::atomic<bool> stop{false};
+    std::vector<std::thread> hogs;
+    for (unsigned k = 0; k + 1 < cores; ++k)
+        hogs.emplace_back([&stop] {
+            volatile double x = 0.0;
+            while (!stop.load(std::memory_order_relaxed)) x = x + 1.0;
+        });
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    const CliResult busy = run_pedesis("run run.toml --out busy", dir);
+    const CliResult chosen = run_pedesis("run run.toml --out chosen --threads 2", dir);
+    stop = true;
+    for (auto& h : hogs) h.join();
+    ASSERT_EQ(busy.exit_code, 0) << busy.output;
+    ASSERT_EQ(chosen.exit_code, 0) << chosen.output;
+    if (cores >= 2)
+        EXPECT_NE(busy.output.find("cores are busy with other work: running on"), std::string::npos)
+            << busy.output;
+    else
+        EXPECT_EQ(busy.output.find("cores are busy"), std::string::npos) << busy.output;
+    EXPECT_EQ(chosen.output.find("cores are busy"), std::string::npos) << chosen.output;
+    EXPECT_EQ(read("busy/checkpoint.bin"), read("chosen/checkpoint.bin"));
+    EXPECT_EQ(run_pedesis("run run.toml --out zero --threads 0", dir).exit_code, 2);
 }
 
 TEST_F(CliRun, FrozenSystemStopsInsteadOfLooping) {
