@@ -4,7 +4,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DPEDESIS_WERROR=ON
 
-.PHONY: all deps build demo test validation bench format clean python
+.PHONY: all deps build demo test validation bench format clean python sanitize fuzz ci
 
 all: build
 
@@ -36,6 +36,24 @@ test: build
 
 validation: build
 	cd $(BUILD) && OMP_WAIT_POLICY=passive ctest --output-on-failure -j $(JOBS) -L validation
+
+# The unit and CLI tests once more, built with AddressSanitizer and UBSan (build-asan/).
+sanitize: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPEDESIS_SANITIZE=ON -DPEDESIS_WERROR=ON
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 \
+	  ctest --output-on-failure -j $(JOBS) -L "unit|cli"
+
+# Every reader under libFuzzer for FUZZ_SECONDS each (clang, build-fuzz/).
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPEDESIS_FUZZ=ON -DPEDESIS_TESTS=OFF
+	cmake --build build-fuzz -j $(JOBS) --target fuzz_targets
+	./scripts/run-fuzzers.sh $(abspath build-fuzz) $(FUZZ_SECONDS)
+
+# What CI runs: the tests, then the sanitizer build's tests and a short fuzzing run.
+ci: test sanitize
+	$(MAKE) fuzz FUZZ_SECONDS=45
 
 format:
 	find src apps tests bench python/src -name '*.hpp' -o -name '*.cpp' | xargs clang-format -i

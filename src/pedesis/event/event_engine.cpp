@@ -1,6 +1,7 @@
 #include "pedesis/event/event_engine.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/particle_checks.hpp"
 #include "pedesis/event/collision_rules.hpp"
 #include "pedesis/event/prediction.hpp"
 #include "pedesis/io/binary_stream.hpp"
@@ -796,6 +797,7 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     if (params.tc > 0.0 && e.last_collision_.size() != n) e.last_collision_.assign(n, -never);
     for (auto s : e.p_.species)
         if (s >= e.p_.species_table.size()) throw InputError("checkpoint: corrupt species index");
+    check_restored_particles(e.p_, e.box_, false); // before anything is built from them
     for (std::size_t i = 0; i < n; ++i) {
         if (e.n_nbr_[i] > e.stride_) throw InputError("checkpoint: corrupt neighbour list");
         for (std::uint16_t k = 0; k < e.n_nbr_[i]; ++k)

@@ -3,10 +3,10 @@
 // state, then the run's own record (hard_run_output.hpp). One layout for the event and
 // stepped runs; each names its engine with its own magic word.
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/particle_checks.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/io/checkpoint_file.hpp"
-#include "pedesis/run/checkpoint_checks.hpp"
 #include "pedesis/run/hard_run_output.hpp"
 
 #include <cstdint>

@@ -1,10 +1,10 @@
 #include "pedesis/run/soft_checkpoint.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/particle_checks.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/io/checkpoint_file.hpp"
-#include "pedesis/run/checkpoint_checks.hpp"
 
 #include <cmath>
 

@@ -303,7 +303,9 @@ PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
                          "' has no parameter '" + given.begin()->first +
                          "' (it has: " + (keys.empty() ? std::string("none") : keys) + ")");
     }
-    for (const auto& [key, on] : flags) {
+    for (const auto& flag : flags) {
+        const std::string& key = flag.first;
+        const bool on = flag.second;
         if (std::none_of(info.flags.begin(), info.flags.end(),
                          [&](const FlagInfo& f) { return key == f.key; }))
             throw InputError(where + ": " + kind_name(kind) + " '" + name + "' has no option '" +
@@ -375,10 +377,12 @@ PerSpecies plugin_parameter(const PluginSpec& spec, const std::string& key,
             throw InputError(p.where + ": has no value for species '" + s.name + "'");
         v.push_back(it->second);
     }
-    for (const auto& [name, value] : p.by_species)
+    for (const auto& entry : p.by_species) {
+        const std::string& name = entry.first; // (clang 14 cannot capture a binding)
         if (std::none_of(species.begin(), species.end(),
                          [&](const Species& s) { return s.name == name; }))
             throw InputError(p.where + ": there is no species '" + name + "'");
+    }
     return PerSpecies(std::move(v));
 }
 

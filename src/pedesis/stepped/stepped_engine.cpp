@@ -1,6 +1,7 @@
 #include "pedesis/stepped/stepped_engine.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/particle_checks.hpp"
 #include "pedesis/event/collision_rules.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/stepped/rewind.hpp"
@@ -367,6 +368,7 @@ SteppedEngine<D> SteppedEngine<D>::load(std::istream& in, const SteppedParams& p
         throw InputError("checkpoint: inconsistent array sizes (corrupt file)");
     for (auto s : e.p_.species)
         if (s >= ns) throw InputError("checkpoint: corrupt species index");
+    check_restored_particles(e.p_, e.box_, false); // before the cell list bins them
     e.dt_ = saved_dt;
     if (params.dt != saved_dt) {
         // a new dt: time goes on from here in steps of it

@@ -1,8 +1,9 @@
 #pragma once
 // Checks of a restored particle store that every engine's checkpoint loader makes after
-// the envelope's checksum has passed: a file that is not corrupt but crafted (or written
-// by a broken build) must still not index outside an array or start a run from a state
-// no simulation can reach.
+// the envelope's checksum has passed, before it builds anything from the particles: a
+// file that is not corrupt but crafted (or written by a broken build) must still not
+// index outside an array, overflow a cell index, or start a run from a state no
+// simulation can reach.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/particles.hpp"
@@ -14,8 +15,10 @@
 namespace pedesis {
 
 // Species indices within the table, tags 0..N-1 each once, finite positions and
-// velocities; with `wrapped`, positions inside the box on periodic axes (the soft engine
-// keeps them wrapped). InputError naming the particle otherwise.
+// velocities with speeds up to 1e100, positions within a box length of the centre (the
+// event engine keeps each particle where its last event left it, a little past a periodic
+// face); with `wrapped`, inside the box on periodic axes (the soft engine wraps them).
+// InputError naming the particle otherwise.
 template <int D>
 void check_restored_particles(const ParticleStore<D>& p, const Box<D>& box, bool wrapped) {
     const std::size_t n = p.size();
@@ -35,6 +38,9 @@ void check_restored_particles(const ParticleStore<D>& p, const Box<D>& box, bool
         for (int a = 0; a < D; ++a) {
             if (!std::isfinite(p.position[i][a]) || !std::isfinite(p.velocity[i][a]))
                 throw InputError(who + ": position or velocity is not a finite number");
+            if (std::abs(p.velocity[i][a]) > 1e100) throw InputError(who + ": speed above 1e100");
+            if (std::abs(p.position[i][a]) > box.length(a))
+                throw InputError(who + ": position far outside the box");
             const double half = 0.5 * box.length(a) * (1.0 + 1e-12);
             if (wrapped && box.periodic(a) && std::abs(p.position[i][a]) > half)
                 throw InputError(who + ": position outside the box");
