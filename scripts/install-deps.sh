@@ -11,6 +11,7 @@ packages=(
   libcairo2-dev ffmpeg python3-matplotlib
   python3-dev pybind11-dev python3-pytest
   python3-ase python3-vtk9 zlib1g-dev
+  clang
 )
 
 missing=()

@@ -308,6 +308,16 @@ GsdFrame GsdReader::frame(std::uint64_t k) const {
         n = static_cast<std::uint64_t>(v);
     }
     auto shape = [n](std::uint32_t m) { return fmt::format("{}x{} (particles/N = {})", n, m, n); };
+    // N sets the size of every array below: it must be backed by the positions in the file
+    // before anything of that size is allocated (a crafted N of 10^9 asked for 4 GB)
+    if (n > 0) {
+        const Entry* pos = find_with_fallback(k, "particles/position");
+        if (!pos)
+            throw InputError(fmt::format("{}: particles/N is {} but the frame has no "
+                                         "particles/position",
+                                         where, n));
+        shaped(*pos, n, 3, shape(3).c_str());
+    }
 
     if (const Entry* e = find_with_fallback(k, "particles/types")) {
         if (e->type != 1 && e->type != 5 && e->type != 11)

@@ -106,7 +106,12 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
             for (int a = 0; a < D; ++a)
                 if (s.box.length(a) != c.box_lengths[static_cast<std::size_t>(a)])
                     throw InputError("box does not match " + c.file);
-        evolver.restore_list(reference, builds);
+        try {
+            evolver.restore_list(reference, builds);
+        } catch (const RunError& e) {
+            // the list's positions come from the file: a bad one is a corrupt file (exit 2)
+            throw InputError(std::string("corrupt neighbour-list state: ") + e.what());
+        }
         evolver.mark_forces_current();
     } catch (const InputError& err) {
         throw InputError(path.string() + ": " + err.what());
