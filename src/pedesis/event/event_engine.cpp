@@ -753,6 +753,16 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     get(in, e.kinetic_exact_);
     get(in, e.stalled_events_);
     get(in, e.counters_);
+    // lengths that size the cell grids and neighbour shells: a crafted value must not
+    // reach an int conversion (fuzzing found a skin of 3.6e76)
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < D; ++a) shortest = std::min(shortest, e.box_.length(a));
+    if (!(std::isfinite(e.skin_) && e.skin_ > 0.0 && e.skin_ < shortest))
+        throw InputError("checkpoint: corrupt neighbour-list skin");
+    for (const auto& s : e.p_.species_table)
+        if (!(s.radius < shortest)) throw InputError("checkpoint: corrupt species radius");
+    if (!(std::isfinite(e.now_) && e.now_ >= 0.0))
+        throw InputError("checkpoint: corrupt time");
     get(in, e.params_.growth_rate); // the checkpoint's, whatever the config now says
     if (!(e.params_.growth_rate >= 0.0 && std::isfinite(e.params_.growth_rate)))
         throw InputError("checkpoint: corrupt growth rate");
