@@ -44,6 +44,7 @@ sanitize: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS=-O1 -DPEDESIS_SANITIZE=ON -DPEDESIS_WERROR=OFF
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 \
+	  LSAN_OPTIONS=suppressions=$(abspath scripts/lsan-suppressions.txt) \
 	  ctest --output-on-failure -j $(JOBS) -L "unit|cli"
 
 # Every reader under libFuzzer for FUZZ_SECONDS each (clang, build-fuzz/).
