@@ -6,6 +6,8 @@
 // -6.77336805323 and -6.23531727009 for 20^3 and 6^3 cells alike. Both are sums of
 // ~40 terms per atom in double precision: 1e-9 relative is far above rounding and far
 // below any real difference (one shell of neighbours more or less moves them by 1e-2).
+#include "support/soft_builder.hpp"
+
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/pair_force.hpp"
 #include "pedesis/soft/pair_potentials.hpp"
@@ -19,24 +21,8 @@ using namespace pedesis;
 
 TEST(LennardJones, FccLatticeSumsEqualLammps) {
     const int cells = 6;
-    const double a = std::cbrt(4.0 / 0.8442), L = cells * a;
-    SoftState<3> s;
-    s.box = Box<3>(Vec<3>::filled(L), std::array<bool, 3>{true, true, true});
-    s.resize(4 * cells * cells * cells);
-    s.p.species_table = {Species{"A", 0.5, 1.0}};
-    const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
-    std::size_t i = 0;
-    for (int x = 0; x < cells; ++x)
-        for (int y = 0; y < cells; ++y)
-            for (int z = 0; z < cells; ++z)
-                for (const auto& b : basis) {
-                    s.p.position[i] = Vec<3>{{(x + b[0]) * a, (y + b[1]) * a, (z + b[2]) * a}} -
-                                      Vec<3>::filled(0.5 * L);
-                    s.p.tag[i] = static_cast<std::uint32_t>(i);
-                    s.p.species[i] = 0;
-                    s.director[i] = Vec<3>{{1.0, 0.0, 0.0}};
-                    ++i;
-                }
+    SoftState<3> s = test::fcc_soft_state(cells, 0.8442);
+    const double L = s.box.length(0);
     Evolver<3> e(s, 0.3);
     e.add_force(std::make_unique<PairForce<3, LjPair>>("lj", LjPair{1.0, 1.0, 2.5}));
     const auto totals = e.pair_totals();

@@ -12,6 +12,8 @@
 //   mmlapps.nist.gov/srs/LJ_PURE/mc.htm: N = 500, cutoff 3 sigma with the analytic
 //   long-range correction) gives U/N = -5.5121 +- 0.0004 at T = 0.85, rho = 0.776.
 #include "pedesis/core/rng.hpp"
+#include "support/soft_builder.hpp"
+
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/langevin.hpp"
 #include "pedesis/soft/pair_force.hpp"
@@ -201,25 +203,8 @@ TEST(PairParameters, ShiftMakesTheEnergyContinuousAtTheCutoff) {
 // bias at this dt is of order 1e-4. A tolerance of 0.5% is ten standard errors, and a
 // wrong potential, cutoff, tail or temperature moves U/N by several per cent.
 TEST(LennardJonesFluid, NistStatePointEnergy) {
-    const int cells = 5;
     const double rho = 0.776, T = 0.85, rc = 3.0;
-    const double a = std::cbrt(4.0 / rho), L = cells * a;
-    SoftState<3> s;
-    s.box = Box<3>(Vec<3>::filled(L), std::array<bool, 3>{true, true, true});
-    s.resize(4 * cells * cells * cells);
-    s.p.species_table = {Species{"A", 0.5, 1.0}};
-    const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
-    std::size_t i = 0;
-    for (int x = 0; x < cells; ++x)
-        for (int y = 0; y < cells; ++y)
-            for (int z = 0; z < cells; ++z)
-                for (const auto& b : basis) {
-                    s.p.position[i] = Vec<3>{{(x + b[0]) * a, (y + b[1]) * a, (z + b[2]) * a}} -
-                                      Vec<3>::filled(0.5 * L);
-                    s.p.tag[i] = static_cast<std::uint32_t>(i);
-                    s.director[i] = Vec<3>{{1.0, 0.0, 0.0}};
-                    ++i;
-                }
+    SoftState<3> s = test::fcc_soft_state(5, rho);
     Evolver<3> e(s, 0.3);
     e.add_force(std::make_unique<PairForce<3, LjPair>>("lj", LjPair{1.0, 1.0, rc}));
     e.add_integrator(std::make_unique<LangevinIntegrator<3>>(PerSpecies(T), PerSpecies(1.0), 11));
