@@ -1,6 +1,7 @@
 #include "run_command.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run.hpp"
 #include "pedesis/setup/run_config.hpp"
@@ -64,7 +65,19 @@ void add_run_command(CLI::App& app) {
                         : std::filesystem::path(a->out);
         if (!a->restart.empty()) o.restart = a->restart;
         choose_threads(a->threads > 0 ? std::optional<int>(a->threads) : std::nullopt, std::cout);
-        make_run(config, o, std::cout)->run();
+        InterruptGuard guard;
+        const std::unique_ptr<Run> run = make_run(config, o, std::cout);
+        if (guard.signal() != 0) guard.reraise(); // nothing is written yet
+        run->run();
+        if (guard.signal() != 0) {
+            std::cout << fmt::format(
+                "pedesis: interrupted by signal {} ({}) at step {} (t = {:.6g}); the run "
+                "directory is complete up to here: continue with --restart {}\n",
+                guard.signal(), strsignal(guard.signal()), run->step(), run->time(),
+                (o.out_dir / "checkpoint.bin").string());
+            std::cout.flush();
+            guard.reraise();
+        }
     });
 }
 

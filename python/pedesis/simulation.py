@@ -99,8 +99,9 @@ class Simulation:
         """Without arguments: on to the config's stop condition, then the end of the run
         (last frame, checkpoint, summary). With steps or time: that much more, or less if
         the stop condition comes first (then the end of the run too). Returns the stop
-        condition's name once it is met, else None. The GIL is released; Ctrl-C stops at
-        the next trigger with the state intact."""
+        condition's name once it is met, else None. The GIL is released; Ctrl-C stops the
+        engine within a step and raises KeyboardInterrupt, with the state intact (run()
+        goes on from there, close() ends the run directory)."""
         why = self._run.advance(steps, time)
         if why is not None and not self._run.closed:
             self._run.close("")

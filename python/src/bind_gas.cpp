@@ -82,8 +82,9 @@ copies in tag order.
                         "Gas.run: collisions_per_particle must be a finite number >= 0, got {}",
                         *collisions_per_particle));
                 GasLimits l{time, collisions_per_particle, steps};
-                py::gil_scoped_release release;
-                return g.model->run(l, check_signals);
+                std::string why;
+                run_interruptible([&] { why = g.model->run(l); });
+                return why;
             },
             py::arg("time") = py::none(), py::arg("collisions_per_particle") = py::none(),
             py::arg("steps") = py::none(), R"doc(
@@ -91,7 +92,7 @@ Advances until the simulated time reaches `time`, the pair collisions since t = 
 reach collisions_per_particle * N, or (stepped engine) `steps` more steps were taken,
 whichever comes first; returns which ("time", "collisions_per_particle", "steps",
 "no_events"). The GIL is released; Ctrl-C stops at the next step (stepped) or within
-about N collisions (event), with the gas in a valid state.
+a few thousand collisions (event), with the gas in a valid state.
 )doc")
         .def_property_readonly(
             "dynamics", [](const PyGas& g) { return g.model->dynamics(); },

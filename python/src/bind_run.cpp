@@ -144,12 +144,8 @@ void bind_run(py::module_& m) {
                         throw InputError("Simulation.run: time must be a finite number >= 0");
                     max_time = r.run->time() + *time;
                 }
-                r.run->set_between_advances(check_signals);
                 const char* why = nullptr;
-                {
-                    py::gil_scoped_release release;
-                    why = r.run->advance(max_step, max_time);
-                }
+                run_interruptible([&] { why = r.run->advance(max_step, max_time); });
                 if (why) return std::string(why);
                 return std::nullopt;
             },

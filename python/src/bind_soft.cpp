@@ -118,7 +118,6 @@ void evolver_run(PyEvolver& e, std::uint64_t steps, double dt, std::uint64_t eve
                  const py::object& callback) {
     RunHooks hooks;
     hooks.every = every;
-    hooks.check_interrupt = check_signals;
     if (!callback.is_none()) {
         if (every == 0) throw InputError("Evolver.run: a callback needs every > 0 (steps)");
         hooks.between = [&callback](std::uint64_t step) {
@@ -126,8 +125,7 @@ void evolver_run(PyEvolver& e, std::uint64_t steps, double dt, std::uint64_t eve
             callback(step);
         };
     }
-    py::gil_scoped_release release;
-    e.model->run(steps, dt, hooks);
+    run_interruptible([&] { e.model->run(steps, dt, hooks); });
 }
 
 void random_init(double phi, double L, double rcut, const std::filesystem::path& outfile,

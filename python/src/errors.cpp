@@ -1,6 +1,7 @@
 #include "errors.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 
 namespace py = pybind11;
 
@@ -39,8 +40,14 @@ void require_parent_directory(const std::filesystem::path& path, const std::stri
         raise_file_not_found(what + ": no such directory: " + parent.string(), parent.string());
 }
 
-void check_signals() {
-    py::gil_scoped_acquire gil;
+void run_interruptible(const std::function<void()>& work) {
+    InterruptGuard guard;
+    {
+        py::gil_scoped_release release;
+        work();
+    }
+    if (guard.signal() == 0) return;
+    guard.reraise(); // to Python's own handler, which notes it (or ends the process)
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
 }
 

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace pedesis::python {
@@ -17,8 +18,10 @@ void require_file(const std::filesystem::path& path, const std::string& what);
 // Raises FileNotFoundError unless the directory a file is to be written into exists.
 void require_parent_directory(const std::filesystem::path& path, const std::string& what);
 
-// Called between steps while the GIL is released: takes it briefly and raises
-// KeyboardInterrupt (or whatever a signal handler raised) if a signal came in.
-void check_signals();
+// Runs `work` with the GIL released and SIGINT, SIGTERM and SIGHUP caught
+// (core/interrupt.hpp), so that the engines stop within a step of a signal with their
+// state whole; then hands the signal to Python as if it had come now (Ctrl-C raises
+// KeyboardInterrupt, and the run can go on or be closed).
+void run_interruptible(const std::function<void()>& work);
 
 } // namespace pedesis::python

@@ -4,6 +4,8 @@
 #include "pedesis/observe/pressure.hpp"
 #include "pedesis/run/engine_params.hpp"
 #include "pedesis/run/hard_run_output.hpp"
+#include "pedesis/run/script_engine.hpp"
+#include "pedesis/run/simulation.hpp"
 #include "pedesis/setup/build_system.hpp"
 #include "pedesis/stepped/stepped_engine.hpp"
 #include "pedesis/stepped/time_step.hpp"
@@ -12,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pedesis::python {
 
@@ -71,7 +74,56 @@ template <int D, class Engine> class Gas : public GasModel {
         return P;
     }
 
+    // Through the one run loop (run/simulation.hpp), without a run directory: the time and
+    // step limits are the loop's, the collision count is the engine's own stop.
+    std::string run(const GasLimits& limits) override {
+        if (limits.steps && !has_steps())
+            throw InputError("run: steps is a limit of the stepped engine; the event engine "
+                             "stops at a time or a collision count");
+        if (!limits.time && !limits.steps && !limits.collisions_per_particle)
+            throw InputError("run: give time, collisions_per_particle or steps");
+        Loop loop(*this, limits.collisions_per_particle
+                             ? collision_limit(*limits.collisions_per_particle)
+                             : std::numeric_limits<std::uint64_t>::max());
+        const RunOptions no_directory;
+        Simulation<D> sim(loop, Schedule{}, OutputChoice{}, no_directory);
+        const std::uint64_t end_step =
+            limits.steps ? steps() + *limits.steps : std::numeric_limits<std::uint64_t>::max();
+        if (const char* why = sim.advance(
+                end_step, limits.time.value_or(std::numeric_limits<double>::infinity())))
+            return why;
+        return limits.steps && steps() >= end_step ? "steps" : "time";
+    }
+
   protected:
+    // The engine as the loop drives it.
+    class Loop final : public ScriptEngine<D> {
+      public:
+        Loop(Gas& gas, std::uint64_t collision_target)
+            : gas_(gas), collision_target_(collision_target) {}
+        std::uint64_t step() const override { return gas_.steps(); }
+        double time() const override { return gas_.time(); }
+        Advance advance(std::uint64_t until_step, double until_time) override {
+            return {gas_.advance_engine(until_step, until_time, collision_target_), false};
+        }
+        Frame<D> frame() override {
+            snapshot_ = gas_.store();
+            return frame_of(snapshot_, gas_.engine_->box(), gas_.time(), gas_.steps());
+        }
+
+      private:
+        Gas& gas_;
+        std::uint64_t collision_target_;
+        ParticleStore<D> snapshot_;
+    };
+
+    virtual bool has_steps() const = 0;
+    // Advances toward step `until_step` / time `until_time` (it may return earlier), and
+    // stops at `collision_target` pair collisions since t = 0; the name of the stop met,
+    // or null.
+    virtual const char* advance_engine(std::uint64_t until_step, double until_time,
+                                       std::uint64_t collision_target) = 0;
+
     // The particles and box of the config, handed to `make` for the engine.
     template <class Make> void start(const RunConfig& c, Make make) {
         const Box<D> box = build_box<D>(c);
@@ -105,28 +157,26 @@ template <int D> class EventGas final : public Gas<D, EventEngine<D>> {
     double time() const override { return this->engine_->time(); }
     std::uint64_t steps() const override { return 0; }
 
-    std::string run(const GasLimits& limits, const std::function<void()>& check) override {
-        if (limits.steps)
-            throw InputError("run: steps is a limit of the stepped engine; the event engine "
-                             "stops at a time or a collision count");
-        auto& e = *this->engine_;
-        const std::uint64_t target = limits.collisions_per_particle
-                                         ? this->collision_limit(*limits.collisions_per_particle)
-                                         : std::numeric_limits<std::uint64_t>::max();
-        // chunks of about N collisions, so that Ctrl-C is felt within a few milliseconds
-        const std::uint64_t chunk = std::max<std::uint64_t>(1000, this->size());
-        for (;;) {
-            if (check) check();
-            StopLimits l;
-            l.time = limits.time.value_or(std::numeric_limits<double>::infinity());
-            l.pair_collisions = std::min(target, e.counters().pair_collisions + chunk);
-            const StopReason r = e.run(l);
-            if (r == StopReason::time) return "time";
-            if (r == StopReason::no_events) return "no_events";
-            if (r == StopReason::energy) return "energy";
-            if (r == StopReason::grown) return "grown"; // run again to go on at these radii
-            if (e.counters().pair_collisions >= target) return "collisions_per_particle";
+    bool has_steps() const override { return false; }
+    const char* advance_engine(std::uint64_t, double until_time,
+                               std::uint64_t collision_target) override {
+        StopLimits l;
+        l.time = until_time;
+        l.pair_collisions = collision_target;
+        switch (this->engine_->run(l)) {
+        case StopReason::collisions:
+            return "collisions_per_particle";
+        case StopReason::no_events:
+            return "no_events";
+        case StopReason::energy:
+            return "energy";
+        case StopReason::grown:
+            return "grown"; // run again to go on at these radii
+        case StopReason::time:
+        case StopReason::interrupted:
+            return nullptr; // the loop sees either
         }
+        return nullptr;
     }
 
   private:
@@ -145,22 +195,12 @@ template <int D> class SteppedGas final : public Gas<D, SteppedEngine<D>> {
     double time() const override { return this->engine_->time(); }
     std::uint64_t steps() const override { return this->engine_->steps(); }
 
-    std::string run(const GasLimits& limits, const std::function<void()>& check) override {
+    bool has_steps() const override { return true; }
+    const char* advance_engine(std::uint64_t, double, std::uint64_t collision_target) override {
         auto& e = *this->engine_;
-        const std::uint64_t end_step =
-            limits.steps ? e.steps() + *limits.steps : std::numeric_limits<std::uint64_t>::max();
-        const std::uint64_t target = limits.collisions_per_particle
-                                         ? this->collision_limit(*limits.collisions_per_particle)
-                                         : std::numeric_limits<std::uint64_t>::max();
-        if (!limits.time && !limits.steps && !limits.collisions_per_particle)
-            throw InputError("run: give time, collisions_per_particle or steps");
-        for (;;) {
-            if (limits.time && e.time() >= *limits.time - 1e-9 * e.dt()) return "time";
-            if (e.steps() >= end_step) return "steps";
-            if (e.counters().pair_collisions >= target) return "collisions_per_particle";
-            if (check) check();
-            e.step();
-        }
+        if (e.counters().pair_collisions < collision_target) e.step(); // one step a call
+        return e.counters().pair_collisions >= collision_target ? "collisions_per_particle"
+                                                                : nullptr;
     }
 
   private:

@@ -7,7 +7,6 @@
 #include "pedesis/setup/run_config.hpp"
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,11 +26,11 @@ class GasModel {
     virtual int dim() const = 0;
     virtual std::string dynamics() const = 0;
     virtual std::size_t size() const = 0;
-    // Advances until the first limit is met; check_interrupt is called between chunks of
-    // work (at most ~N collisions or one step apart) and may throw to stop there.
-    // Returns the reason: "time", "collisions_per_particle", "steps", "no_events".
-    virtual std::string run(const GasLimits& limits,
-                            const std::function<void()>& check_interrupt) = 0;
+    // Advances through the one run loop (run/simulation.hpp), without a run directory,
+    // until the first limit is met or a caught signal (core/interrupt.hpp) stops it.
+    // Returns the reason: "time", "collisions_per_particle", "steps", "no_events",
+    // "energy", "grown".
+    virtual std::string run(const GasLimits& limits) = 0;
     // Copies in tag order (the event engine moves particles lazily: its own arrays hold
     // each particle at its last event, so there is nothing to view).
     virtual std::vector<double> positions() const = 0;  // N x dim at time()

@@ -1,10 +1,13 @@
 #include "soft_model.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/tutorial_json.hpp"
 #include "pedesis/io/vtp_writer.hpp"
 #include "pedesis/observe/soft_observables.hpp"
+#include "pedesis/run/script_engine.hpp"
+#include "pedesis/run/simulation.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/run_config.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
@@ -108,6 +111,34 @@ std::unique_ptr<SystemModel> read_system_d(const std::filesystem::path& path, st
     return std::make_unique<System<D>>(build_soft_state<D>(c));
 }
 
+// The tutorial's System and Evolver as an engine of the one run loop (run/simulation.hpp),
+// run without a run directory: the script's Dump and callbacks are its output. The clock
+// is t0 + (step - step0) dt, as the CLI counts it.
+template <int D> class TutorialEngine final : public ScriptEngine<D> {
+  public:
+    TutorialEngine(SoftState<D>& state, Evolver<D>& evolver, double t0, std::uint64_t step0,
+                   double dt)
+        : s_(state), evolver_(evolver), t0_(t0), step0_(step0), dt_(dt) {}
+
+    std::uint64_t step() const override { return s_.step; }
+    double time() const override { return s_.time; }
+    Advance advance(std::uint64_t until_step, double) override {
+        while (s_.step < until_step && !interrupt_requested()) {
+            evolver_.evolve(dt_);
+            s_.time = t0_ + static_cast<double>(s_.step - step0_) * dt_;
+        }
+        return {};
+    }
+    Frame<D> frame() override { return s_.frame(); }
+
+  private:
+    SoftState<D>& s_;
+    Evolver<D>& evolver_;
+    double t0_;
+    std::uint64_t step0_;
+    double dt_;
+};
+
 template <int D> class EvolverD final : public EvolverModel {
   public:
     EvolverD(System<D>& sys, double rcut, double pad, std::uint64_t seed, std::uint64_t sort_every)
@@ -134,19 +165,19 @@ template <int D> class EvolverD final : public EvolverModel {
         // the CLI's in the last bits
         if (!sorted_order_.empty()) evolver_.reorder(sorted_order_);
         sorted_order_.clear();
+        TutorialEngine<D> engine(s, evolver_, t0_, step0_, dt_);
+        const RunOptions no_directory;
+        Simulation<D> sim(engine, Schedule{}, OutputChoice{}, no_directory);
+        if (hooks.every && hooks.between)
+            sim.add_operation(Trigger::every_steps(hooks.every), [&] {
+                const auto order = evolver_.restore_tag_order();
+                remember_positions();
+                hooks.between(s.step);
+                take_outside_changes("after the callback");
+                if (!order.empty()) evolver_.reorder(inverse(order));
+            });
         try {
-            for (std::uint64_t k = 0; k < steps; ++k) {
-                if (hooks.check_interrupt) hooks.check_interrupt();
-                evolver_.evolve(dt);
-                s.time = t0_ + static_cast<double>(s.step - step0_) * dt_;
-                if (hooks.every && hooks.between && s.step % hooks.every == 0) {
-                    const auto order = evolver_.restore_tag_order();
-                    remember_positions();
-                    hooks.between(s.step);
-                    take_outside_changes("after the callback");
-                    if (!order.empty()) evolver_.reorder(inverse(order));
-                }
-            }
+            sim.advance(s.step + steps);
         } catch (...) {
             back_to_tag_order();
             throw;

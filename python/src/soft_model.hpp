@@ -2,8 +2,8 @@
 // The soft/active engine as the Python module drives it: a System of either dimension
 // (chosen when its particles are read) and Evolvers over it, behind interfaces without
 // templates, so that the bindings stay one piece of code for 2D and 3D. Nothing here
-// knows Python; the run loop takes plain callbacks for what the bindings do between
-// steps (signals, the user's callback).
+// knows Python; the run loop takes a plain callback for what the bindings do between
+// steps (the user's callback).
 #include "pedesis/core/species.hpp"
 #include "pedesis/soft/plugin_spec.hpp"
 
@@ -51,15 +51,15 @@ std::unique_ptr<SystemModel> read_system(const std::filesystem::path& path, int 
 struct RunHooks {
     std::uint64_t every = 0;                    // steps between calls of between_steps
     std::function<void(std::uint64_t)> between; // called with the step, storage in tag order
-    std::function<void()> check_interrupt;      // may throw to stop at a step boundary
 };
 
 class EvolverModel {
   public:
     virtual ~EvolverModel() = default;
     virtual void add(const PluginSpec& spec) = 0;
-    // Advances `steps` steps of dt; leaves the storage in tag order on return, also when
-    // a hook throws.
+    // Advances `steps` steps of dt through the one run loop (run/simulation.hpp), without a
+    // run directory; a caught signal (core/interrupt.hpp) ends it early at a step boundary.
+    // Leaves the storage in tag order on return, also when a hook throws.
     virtual void run(std::uint64_t steps, double dt, const RunHooks& hooks) = 0;
     virtual std::uint64_t list_builds() const = 0;
     virtual double list_cutoff() const = 0;

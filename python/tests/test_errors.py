@@ -147,6 +147,56 @@ def test_ctrl_c_stops_a_long_run_at_a_step(system):
     assert system.step == before + 5
 
 
+def interrupted_after(seconds, call):
+    """Sends SIGINT to this process after `seconds` while `call` runs; it must raise
+    KeyboardInterrupt within a second of the signal."""
+    import time
+    sent = []
+    timer = threading.Timer(seconds, lambda: (sent.append(time.monotonic()),
+                                              os.kill(os.getpid(), signal.SIGINT)))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            call()
+        assert time.monotonic() - sent[0] < 1.0
+    finally:
+        timer.cancel()
+
+
+def test_ctrl_c_stops_an_event_gas_between_events():
+    # a time limit hours away: only the signal ends this run
+    gas = pedesis.Gas('dimension = 2\nseed = 4\n[box]\nlength = 30.0\n[[species]]\n'
+                      'name = "a"\ncount = 200\nradius = 0.5\n')
+    interrupted_after(0.3, lambda: gas.run(time=1e12))
+    assert gas.time > 0 and gas.collisions > 0
+    t = gas.time
+    assert gas.run(time=t + 0.5) == "time"  # usable afterwards
+    assert gas.time == pytest.approx(t + 0.5)
+
+
+def test_ctrl_c_stops_a_simulation_between_triggers(tmp_path):
+    # one log row at the start and none due for 10^9 steps: the stop comes from the engine
+    cfg = tmp_path / "long.toml"
+    cfg.write_text('dimension = 2\ndynamics = "brownian"\nseed = 1\n[box]\nlength = 20.0\n'
+                   '[[species]]\nname = "A"\ncount = 40\nradius = 1.0\n[initial]\n'
+                   'positions = "random"\n[[force]]\nname = "harmonic"\nk = 10.0\n'
+                   '[[integrator]]\nname = "brownian"\nT = 0.1\ngamma = 1.0\n'
+                   '[run]\nsteps = 1000000000\ndt = 0.001\n[output]\nprogress = false\n'
+                   'log_every = 1000000000\nformats = ["gsd"]\n')
+    sim = pedesis.Simulation.from_file(cfg, out=tmp_path / "out")
+    interrupted_after(0.5, sim.run)
+    step = sim.step
+    assert 0 < step < 10**9
+    assert sim.run(steps=10) is None  # goes on from there
+    assert sim.step == step + 10
+    sim.close()
+    import json
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["stopped_by"] == "script"
+    assert summary["final"]["step"] == step + 10
+    assert not list((tmp_path / "out").glob("*.part"))
+
+
 def test_gas_config_errors_name_the_line(tmp_path):
     with pytest.raises(ValueError, match=r"<Gas config>:\d+:\d+"):
         pedesis.Gas("dimension = 2\n[box\n")

@@ -6,6 +6,9 @@
 
 #include "pedesis/observe/quantities.hpp"
 
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 #include <fstream>
 
 using namespace pedesis::test;
@@ -98,4 +101,41 @@ TEST_F(LogQuantities, UnknownOrUnmeasuredNamesAreRefusedBeforeAnyOutput) {
     expect_rejected(base + "[log]\nquantities = [\"time\", \"time\"]\n", {"listed twice"});
     expect_rejected(base + "[log]\nquantities = []\n", {"non-empty list"});
     expect_rejected(base + "[log]\nquantities = [\"time\"]\nevery = 3\n", {"every"});
+}
+
+// summary.json's "final" holds every quantity the engine measures, by the same names, with
+// the values of the last row of the default log (the same instant), whatever
+// [log] quantities showed; so a script reads the end of any run without knowing the engine.
+TEST_F(LogQuantities, SummaryFinalIsTheLastRowOfEveryMeasuredQuantity) {
+    const std::string chosen = "[log]\nquantities = [\"time\"]\n";
+    const std::map<std::string, std::string> configs = {
+        {"event", small_config("", "length = 20.0", "time = 2.0")},
+        {"stepped", "dimension = 2\ndynamics = \"stepped\"\nseed = 2\n[box]\nlength = 20.0\n"
+                    "[[species]]\nname = \"A\"\ncount = 40\nradius = 0.5\n[stepped]\n"
+                    "dt = 0.01\n[run]\ntime = 1.0\n[output]\nlog_interval = 0.5\n"
+                    "progress = false\n"},
+        {"nve", soft_nve}};
+    for (const auto& [name, config] : configs) {
+        write(name + ".toml", config);
+        write(name + "_time.toml", config + chosen);
+        ASSERT_EQ(run_pedesis("run " + name + ".toml --out " + name, dir).exit_code, 0) << name;
+        ASSERT_EQ(run_pedesis("run " + name + "_time.toml --out " + name + "_time", dir).exit_code,
+                  0)
+            << name;
+        const CsvColumns log = csv_columns(read(name + "/log.csv"));
+        for (const std::string& run : {name, name + "_time"}) {
+            const auto final_row = nlohmann::json::parse(read(run + "/summary.json")).at("final");
+            EXPECT_EQ(final_row.size(), log.names.size()) << run << ": " << final_row.dump();
+            for (const auto& column : log.names) {
+                ASSERT_TRUE(final_row.contains(column)) << run << " lacks " << column;
+                const std::string last = log.cells.at(column).back();
+                if (final_row[column].is_null()) {
+                    EXPECT_EQ(last, "inf") << run << ": " << column;
+                    continue;
+                }
+                const double v = final_row[column].get<double>(), shown = std::stod(last);
+                EXPECT_NEAR(v, shown, 1e-9 * std::abs(shown)) << run << ": " << column;
+            }
+        }
+    }
 }

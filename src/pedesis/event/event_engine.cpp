@@ -1,6 +1,7 @@
 #include "pedesis/event/event_engine.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/core/particle_checks.hpp"
 #include "pedesis/event/collision_rules.hpp"
 #include "pedesis/event/prediction.hpp"
@@ -542,7 +543,9 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
 }
 
 template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
-    while (true) {
+    // a signal is looked for every 4096 events: microseconds apart, and no cost per event
+    for (std::uint32_t since_check = 0;; ++since_check) {
+        if ((since_check & 4095u) == 4095u && interrupt_requested()) return StopReason::interrupted;
         const std::uint32_t i = queue_.top();
         const double te = queue_.top_time();
         if (next_growth_step_ < te && next_growth_step_ <= limits.time) {
@@ -761,8 +764,7 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
         throw InputError("checkpoint: corrupt neighbour-list skin");
     for (const auto& s : e.p_.species_table)
         if (!(s.radius < shortest)) throw InputError("checkpoint: corrupt species radius");
-    if (!(std::isfinite(e.now_) && e.now_ >= 0.0))
-        throw InputError("checkpoint: corrupt time");
+    if (!(std::isfinite(e.now_) && e.now_ >= 0.0)) throw InputError("checkpoint: corrupt time");
     get(in, e.params_.growth_rate); // the checkpoint's, whatever the config now says
     if (!(e.params_.growth_rate >= 0.0 && std::isfinite(e.params_.growth_rate)))
         throw InputError("checkpoint: corrupt growth rate");

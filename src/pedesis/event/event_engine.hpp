@@ -56,7 +56,8 @@ struct GrowthStatus {
     std::uint64_t steps = 0;    // growth steps (whole-system list rebuilds) so far
 };
 
-enum class StopReason { time, collisions, energy, no_events, grown };
+// interrupted: a signal arrived (core/interrupt.hpp); the state is whole and can go on.
+enum class StopReason { time, collisions, energy, no_events, grown, interrupted };
 
 struct StopLimits {
     double time = std::numeric_limits<double>::infinity();

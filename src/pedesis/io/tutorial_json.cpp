@@ -1,6 +1,9 @@
 #include "pedesis/io/tutorial_json.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/machine_memory.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <climits>
@@ -86,6 +89,15 @@ std::string read_text(const fs::path& path) {
     if (fs::is_directory(path, ec)) throw InputError(name + ": is a directory, not a file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name + ": cannot open");
+    // the text and nlohmann's tree of it are held at once: about 10 bytes per byte of text
+    // (a particle's line of ~100 bytes becomes a dozen values of ~80 bytes each)
+    const auto size = fs::file_size(path, ec);
+    const double need = 10.0 * static_cast<double>(ec ? 0 : size);
+    if (const double have = physical_memory_bytes(); have > 0.0 && need > have)
+        throw InputError(fmt::format("{}: a JSON file of {:.3g} GB needs about {:.3g} GB to read "
+                                     "(an estimate), more than this machine's {:.3g} GB of memory",
+                                     name, static_cast<double>(size) / 1e9, need / 1e9,
+                                     have / 1e9));
     std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     if (in.bad()) throw InputError(name + ": cannot read");
     return text;

@@ -4,6 +4,7 @@ namespace pedesis {
 
 namespace {
 constexpr bool count = true;
+constexpr bool may_be_infinite = true;
 constexpr const char* hard = "event, stepped";
 constexpr const char* all = "event, stepped, soft";
 constexpr const char* soft = "soft";
@@ -40,7 +41,7 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
          all},
         {"compressibility", "1", "Z = P / (n T) over the interval", hard},
         {"mean_free_time", "time", "N_mobile t / (2 collisions): mean time between collisions",
-         hard},
+         hard, !count, may_be_infinite},
         {"list_rebuilds", "1", "neighbour-list builds so far", "event, soft", count},
         {"packing_fraction", "1", "volume fraction of the particles (growth runs)", "event"},
         {"growth_pressure", "1",

@@ -16,6 +16,9 @@ struct QuantityInfo {
     const char* meaning;
     const char* engines; // which engines measure it
     bool count = false;  // an integer count, written without exponent or decimals
+    // +inf is one of its values (a mean time between collisions before the first one);
+    // any other quantity that is not finite means a broken state and stops the run
+    bool may_be_infinite = false;
 };
 
 const std::vector<QuantityInfo>& quantity_catalogue();

@@ -1,9 +1,9 @@
 #include "pedesis/render/render_movie.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/render/canvas.hpp"
 #include "pedesis/render/ffmpeg_encoder.hpp"
-#include "pedesis/render/interrupt_guard.hpp"
 #include "pedesis/render/layout.hpp"
 
 #include <fmt/format.h>

@@ -78,6 +78,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     Advance advance(std::uint64_t /*until_step*/, double until_time) override {
         limits_.time = std::min(until_time, t_end_);
         const StopReason reason = engine_->run(limits_);
+        if (reason == StopReason::interrupted) return {}; // the Simulation sees the signal
         if (reason == StopReason::grown) announce_growth_end();
         const bool stop = (reason != StopReason::time && reason != StopReason::grown) ||
                           (reason == StopReason::grown && c_.stop_when_grown) ||
@@ -119,11 +120,9 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         collisions_start_ = engine_->counters().pair_collisions;
     }
 
-    void finish(const char* stopped_by) override {
+    nlohmann::json summary(const char* /*stopped_by*/) override {
         const auto& e = *engine_;
-        out_.write_speed_histogram(e.lazy_particles());
         nlohmann::json j = out_.summary(e.lazy_particles(), e.box(), e.time(), e.counters());
-        j["stopped_by"] = stopped_by;
         if (growing_) {
             const auto& g = e.growth();
             j["growth"] = {{"growing", g.growing},
@@ -136,10 +135,15 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
                            {"steps", g.steps}};
             j["packing_fraction"] = e.packing_fraction(); // the radii of this instant
         }
-        out_.write_summary(j);
+        return j;
+    }
+
+    void finish(const nlohmann::json& j) override {
+        const auto& e = *engine_;
+        out_.write_speed_histogram(e.lazy_particles());
         console_ << fmt::format(
             "pedesis: stopped by {} at t = {:.6g} after {} collisions ({:.3g} per particle)\n",
-            stopped_by, e.time(), e.counters().pair_collisions,
+            j["stopped_by"].template get<std::string>(), e.time(), e.counters().pair_collisions,
             j["collisions_per_particle"].template get<double>());
         out_.print_summary(console_, j, e.box());
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());

@@ -183,11 +183,6 @@ void HardRunOutput<D>::print_summary(std::ostream& console, const nlohmann::json
                                j["mean_free_time"].template get<double>());
 }
 
-template <int D> void HardRunOutput<D>::write_summary(const nlohmann::json& j) const {
-    write_file_atomically(o_.out_dir / "summary.json",
-                          [&](std::ostream& out) { out << j.dump(2) << "\n"; });
-}
-
 template <int D> std::string box_text(const Box<D>& box) {
     std::string s;
     for (int a = 0; a < D; ++a)

@@ -69,7 +69,6 @@ template <int D> class HardRunOutput {
                            const EventCounters<D>& counters) const;
     // The printed lines for those fields, from the temperature to the mean free time.
     void print_summary(std::ostream& console, const nlohmann::json& j, const Box<D>& box) const;
-    void write_summary(const nlohmann::json& j) const;
 
   private:
     const RunConfig& c_;

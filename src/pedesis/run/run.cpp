@@ -76,9 +76,6 @@ template <int D> class RunOf final : public Run {
     void add_operation(Trigger trigger, std::function<void()> act) override {
         sim_.add_operation(trigger, std::move(act));
     }
-    void set_between_advances(std::function<void()> f) override {
-        sim_.set_between_advances(std::move(f));
-    }
     void add_trajectory(const std::filesystem::path& path, const std::string& format,
                         Trigger trigger) override {
         auto t = std::make_shared<ScriptTrajectory<D>>(path, format);

@@ -55,7 +55,6 @@ class Run {
     virtual const char* stopped_by() const = 0;
 
     virtual void add_operation(Trigger trigger, std::function<void()> act) = 0;
-    virtual void set_between_advances(std::function<void()> f) = 0;
     // A trajectory file of the script's own (format "gsd" or "xyz") that gets a frame
     // whenever `trigger` fires; committed when the run closes or fails.
     virtual void add_trajectory(const std::filesystem::path& path, const std::string& format,

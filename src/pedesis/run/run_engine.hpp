@@ -7,6 +7,8 @@
 // Simulation's, written once.
 #include "pedesis/core/frame.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -55,9 +57,12 @@ template <int D> class RunEngine {
     // Called once before the loop: the first printed line, and for a fresh run whatever
     // frame 0 must show (the soft engine computes the initial forces).
     virtual void start(bool fresh) = 0;
-    // The end of a finished run, after the last frame and checkpoint: the files only the
-    // end writes (speed histogram, summary.json) and the printed summary.
-    virtual void finish(const char* stopped_by) = 0;
+    // The end of a finished run, after the last frame and checkpoint. summary: this
+    // engine's entries of summary.json (run averages, counts, the engine's parameters);
+    // the Simulation adds stopped_by and the last log row by quantity name, and writes it.
+    // finish: the files only the end writes (speed histogram) and the printed summary.
+    virtual nlohmann::json summary(const char* stopped_by) = 0;
+    virtual void finish(const nlohmann::json& summary) = 0;
 };
 
 } // namespace pedesis

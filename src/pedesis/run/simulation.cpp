@@ -1,12 +1,14 @@
 #include "pedesis/run/simulation.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run_directory.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
 
@@ -17,11 +19,17 @@ Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice 
                           const RunOptions& options)
     : engine_(engine), schedule_(std::move(schedule)), outputs_(std::move(outputs)),
       options_(options) {
+    if (!in_directory() && (schedule_.frames.active() || schedule_.checkpoint.active()))
+        throw std::logic_error("Simulation: frames and checkpoints need a run directory");
     logged_ = engine_.log_columns();
     const std::vector<std::string>& logged = logged_;
-    for (const std::string& name : logged)
-        if (!find_quantity(name))
+    for (const std::string& name : logged) {
+        const QuantityInfo* q = find_quantity(name);
+        if (!q)
             throw std::logic_error("log column '" + name + "' is not in the quantity catalogue");
+        may_be_infinite_.push_back(q->may_be_infinite);
+        is_count_.push_back(q->count);
+    }
     std::vector<std::string> chosen = outputs_.quantities.empty() ? logged : outputs_.quantities;
     for (const std::string& name : chosen) {
         const auto it = std::find(logged.begin(), logged.end(), name);
@@ -32,7 +40,6 @@ Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice 
                              "' is not measured by this run (it measures: " + known + ")");
         }
         columns_.push_back(static_cast<std::size_t>(it - logged.begin()));
-        counts_.push_back(find_quantity(name)->count);
         chosen_.push_back(name);
     }
 }
@@ -40,19 +47,21 @@ Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice 
 template <int D> void Simulation<D>::open() {
     if (opened_) return;
     opened_ = true;
-    const auto& dir = options_.out_dir;
-    const std::vector<const char*> stale = engine_.stale_results();
-    prepare_run_directory(dir, options_.config_path, stale);
-    log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
-    std::string header;
-    for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged_[c];
-    log_->append(header + "\n");
-    frames_ = std::make_unique<FrameWriters<D>>(dir, outputs_.formats);
+    if (in_directory()) {
+        const auto& dir = options_.out_dir;
+        const std::vector<const char*> stale = engine_.stale_results();
+        prepare_run_directory(dir, options_.config_path, stale);
+        log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
+        std::string header;
+        for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged_[c];
+        log_->append(header + "\n");
+        frames_ = std::make_unique<FrameWriters<D>>(dir, outputs_.formats);
+    }
 
     const bool fresh = !options_.restart;
     engine_.start(fresh);
     // a restarted run writes nothing at its start: the run it continues did
-    if (fresh) {
+    if (fresh && in_directory()) {
         write_log_row();
         write_frame();
     }
@@ -67,7 +76,6 @@ template <int D> void Simulation<D>::add_operation(Trigger trigger, std::functio
 }
 
 template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, double max_time) {
-    open();
     if (closed_) throw std::logic_error("Simulation::advance after close");
     const auto& dir = options_.out_dir;
     // a time limit within rounding of the clock is reached (a stepped clock is k dt)
@@ -76,8 +84,10 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
                engine_.time() >= max_time - 1e-9 * std::max(1.0, std::abs(max_time));
     };
     try {
-        while (!stopped_by_ && !reached()) {
-            if (between_advances_) between_advances_();
+        open();
+        // a signal (core/interrupt.hpp) ends the loop at the engine's next return, with
+        // the state whole: the caller decides whether to close the run or go on
+        while (!stopped_by_ && !reached() && !interrupt_requested()) {
             std::uint64_t until_step = max_step;
             double until_time = max_time;
             for (const Trigger* t : {&schedule_.log, &schedule_.frames, &schedule_.checkpoint}) {
@@ -126,17 +136,34 @@ template <int D> void Simulation<D>::close(const char* ended_by) {
     open();
     if (closed_) return;
     closed_ = true;
+    if (!in_directory()) return;
+    // the end of the run always has a log row (summary.json's "final" is that row)
+    if (rows_this_run_ == 0 || last_row_step_ != engine_.step() || last_row_time_ != engine_.time())
+        write_log_row();
     if (frames_this_run_ == 0 || last_frame_step_ != engine_.step() ||
         last_frame_time_ != engine_.time())
         write_frame();
     engine_.save_checkpoint(options_.out_dir / "checkpoint.bin");
     close_files();
-    engine_.finish(stopped_by_ ? stopped_by_ : ended_by);
+    nlohmann::json summary = engine_.summary(stopped_by_ ? stopped_by_ : ended_by);
+    summary["stopped_by"] = stopped_by_ ? stopped_by_ : ended_by;
+    // every quantity the engine measures, by its catalogue name (observe/quantities.hpp);
+    // +inf and NaN are null in JSON
+    nlohmann::json& final_row = summary["final"];
+    for (std::size_t c = 0; c < logged_.size(); ++c) {
+        if (is_count_[c])
+            final_row[logged_[c]] = static_cast<std::uint64_t>(values_.at(c));
+        else
+            final_row[logged_[c]] = values_.at(c);
+    }
+    write_file_atomically(options_.out_dir / "summary.json",
+                          [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+    engine_.finish(summary);
 }
 
 template <int D> void Simulation<D>::run() {
     advance();
-    close("");
+    close(interrupt_requested() ? "interrupted" : "");
 }
 
 // Every value with 10 significant digits (counts as integers): "inf" and "nan" as
@@ -144,13 +171,25 @@ template <int D> void Simulation<D>::run() {
 template <int D> void Simulation<D>::write_log_row() {
     values_.clear();
     engine_.measure(values_);
+    // every measured value, shown or not: a NaN anywhere means the state is broken
+    for (std::size_t c = 0; c < logged_.size(); ++c) {
+        const double v = values_.at(c);
+        if (std::isnan(v) || (std::isinf(v) && !may_be_infinite_[c]))
+            throw RunError(fmt::format("at step {} (t = {:.6g}) the logged quantity '{}' is {}: "
+                                       "the state is no longer finite, and the run stops",
+                                       engine_.step(), engine_.time(), logged_[c], v));
+    }
     last_row_.clear();
     for (std::size_t c : columns_) last_row_.push_back(values_.at(c));
+    ++rows_this_run_;
+    last_row_step_ = engine_.step();
+    last_row_time_ = engine_.time();
+    if (!log_) return;
     fmt::memory_buffer row;
     for (std::size_t k = 0; k < columns_.size(); ++k) {
         if (k) row.push_back(',');
         const double v = values_.at(columns_[k]);
-        if (counts_[k])
+        if (is_count_[columns_[k]])
             fmt::format_to(std::back_inserter(row), "{}", static_cast<std::uint64_t>(v));
         else
             fmt::format_to(std::back_inserter(row), "{:.10g}", v);
@@ -173,6 +212,7 @@ template <int D> void Simulation<D>::close_files() {
 }
 
 template <int D> std::string Simulation<D>::failure_note() const {
+    if (!in_directory()) return "";
     if (frames_this_run_ == 0)
         return fmt::format(" (no snapshot was written by this run; the last good state is the "
                            "checkpoint it started from, {}; the log is in {})",

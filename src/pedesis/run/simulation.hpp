@@ -41,12 +41,15 @@ template <int D> struct EngineSetup {
 template <int D> class Simulation {
   public:
     // Throws InputError (before any file exists) if a chosen quantity is one the engine
-    // does not measure.
+    // does not measure. An empty options.out_dir runs without a run directory: nothing is
+    // written (the schedule then has no frames or checkpoints), the rest is the same.
     Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice outputs,
                const RunOptions& options);
 
     // The whole run as the CLI makes it: open, advance to the stop condition, close.
-    // Throws RunError (outputs kept) if the run fails.
+    // Throws RunError (outputs kept) if the run fails. A signal caught by an
+    // InterruptGuard (core/interrupt.hpp) ends it early, closed as a finished run is
+    // (last frame, checkpoint, summary), with ended_by "interrupted".
     void run();
 
     // The steps of run(), for a script that drives the run.
@@ -54,8 +57,9 @@ template <int D> class Simulation {
     // called by advance and close if not yet.
     void open();
     // Advances until the config's stop condition (then returns its name) or until step
-    // `max_step` / time `max_time`, whichever comes first (then returns null). An
-    // exception from an operation or from between_advances leaves the run able to go on.
+    // `max_step` / time `max_time`, whichever comes first, or until a caught signal
+    // (then returns null). An
+    // exception from an operation leaves the run able to go on.
     const char* advance(std::uint64_t max_step = std::numeric_limits<std::uint64_t>::max(),
                         double max_time = std::numeric_limits<double>::infinity());
     // The end of the run directory: the last frame, the checkpoint, the summary (whose
@@ -65,8 +69,6 @@ template <int D> class Simulation {
     // One more thing to do when `trigger` fires (not at the stop, like frames): a
     // script's writer or callback.
     void add_operation(Trigger trigger, std::function<void()> act);
-    // Called before every advance of the engine (a script checks for Ctrl-C there).
-    void set_between_advances(std::function<void()> f) { between_advances_ = std::move(f); }
 
     // The log's columns and the values of its last row (empty before the first).
     const std::vector<std::string>& log_names() const { return chosen_; }
@@ -80,6 +82,9 @@ template <int D> class Simulation {
         std::function<void()> act;
     };
 
+    // Without a run directory (an empty out_dir) the loop keeps its triggers, operations,
+    // stop conditions and checks, and writes nothing: how a script's own driver runs.
+    bool in_directory() const { return !options_.out_dir.empty(); }
     void write_frame();
     void write_log_row();
     void close_files();
@@ -88,21 +93,23 @@ template <int D> class Simulation {
     RunEngine<D>& engine_;
     Schedule schedule_;
     OutputChoice outputs_;
-    std::vector<std::string> logged_;  // every column the engine measures
-    std::vector<std::string> chosen_;  // the log's columns
-    std::vector<std::size_t> columns_; // their indices into logged_
-    std::vector<bool> counts_;         // per chosen column: written as an integer
-    std::vector<double> values_;       // one measured row, reused
-    std::vector<double> last_row_;     // the chosen columns of the last row
+    std::vector<std::string> logged_;   // every column the engine measures
+    std::vector<bool> may_be_infinite_; // per logged_ column (observe/quantities.hpp)
+    std::vector<bool> is_count_;        // per logged_ column: an integer count
+    std::vector<std::string> chosen_;   // the log's columns
+    std::vector<std::size_t> columns_;  // their indices into logged_
+    std::vector<double> values_;        // one measured row, reused
+    std::vector<double> last_row_;      // the chosen columns of the last row
     const RunOptions& options_;
     std::vector<Operation> operations_;
-    std::function<void()> between_advances_;
     std::unique_ptr<AtomicAppendFile> log_;
     std::unique_ptr<FrameWriters<D>> frames_;
     bool opened_ = false, closed_ = false;
     const char* stopped_by_ = nullptr;
     std::uint64_t frames_this_run_ = 0; // by this invocation (a restart starts at 0)
     std::uint64_t last_frame_step_ = 0;
+    std::uint64_t rows_this_run_ = 0, last_row_step_ = 0;
+    double last_row_time_ = 0.0;
     double last_frame_time_ = 0.0;
 };
 

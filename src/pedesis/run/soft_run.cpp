@@ -1,6 +1,7 @@
 #include "pedesis/run/soft_run.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/observe/soft_observables.hpp"
 #include "pedesis/observe/thermo.hpp"
@@ -78,7 +79,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     Advance advance(std::uint64_t until_step, double until_time) override {
         const std::uint64_t target = std::min<std::uint64_t>(until_step, c_.steps);
         // a time target within rounding of the clock k dt is reached
-        while (state_.step < target && state_.time < until_time - 1e-9 * c_.dt) {
+        while (state_.step < target && state_.time < until_time - 1e-9 * c_.dt &&
+               !interrupt_requested()) {
             evolver_->evolve(c_.dt);
             // a multiple of dt, not a running sum: t = 10 after 1000 steps of 0.01
             state_.time = time_start_ + static_cast<double>(state_.step - step_start_) * c_.dt;
@@ -151,10 +153,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         time_start_ = state_.time;
     }
 
-    void finish(const char* /*stopped_by*/) override {
+    nlohmann::json summary(const char* /*stopped_by*/) override {
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
-        const double rate_now = rate();
         nlohmann::json j;
         j["dimension"] = D;
         j["dynamics"] = c_.dynamics;
@@ -176,12 +177,16 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         j["list_rebuilds"] = evolver_->list_builds();
         j["frames"] = book_.frames;
         j["wall_seconds"] = wall;
-        j["particle_steps_per_second"] = rate_now;
-        write_file_atomically(o_.out_dir / "summary.json",
-                              [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+        j["particle_steps_per_second"] = rate();
+        return j;
+    }
+
+    void finish(const nlohmann::json& j) override {
         console_ << fmt::format("pedesis: done at step {} (t = {:.6g}) in {:.3g} s, {:.3g} "
                                 "particle-steps/s, {} list rebuilds\n",
-                                state_.step, state_.time, wall, rate_now, evolver_->list_builds());
+                                state_.step, state_.time, j["wall_seconds"].template get<double>(),
+                                j["particle_steps_per_second"].template get<double>(),
+                                evolver_->list_builds());
         console_ << fmt::format("  polar order {:.4f} (run mean {:.4f}), MSD {:.6g}, mean pressure "
                                 "{:.6g}\n",
                                 polar_order(state_), j["mean_polar_order"].template get<double>(),

@@ -162,13 +162,11 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
                 suggested);
     }
 
-    void finish(const char* why) override {
+    nlohmann::json summary(const char* /*stopped_by*/) override {
         const auto& e = *engine_;
-        out_.write_speed_histogram(e.particles());
         nlohmann::json j = out_.summary(e.particles(), e.box(), e.time(), e.counters());
         const auto C = e.counters().pair_collisions;
         j["dynamics"] = "stepped";
-        j["stopped_by"] = why;
         j["dt"] = e.dt();
         j["steps"] = e.steps();
         j["max_move"] = c_.max_move;
@@ -177,11 +175,16 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
             C ? static_cast<double>(e.stats().late_collisions) / static_cast<double>(C) : 0.0;
         j["chained_events"] = e.stats().chained_events;
         j["most_events_in_step"] = e.stats().most_events_in_step;
-        out_.write_summary(j);
+        return j;
+    }
 
+    void finish(const nlohmann::json& j) override {
+        const auto& e = *engine_;
+        out_.write_speed_histogram(e.particles());
         console_ << fmt::format("pedesis: stopped by {} at t = {:.6g} (step {}) after {} "
                                 "collisions ({:.3g} per particle)\n",
-                                why, e.time(), e.steps(), C,
+                                j["stopped_by"].template get<std::string>(), e.time(), e.steps(),
+                                e.counters().pair_collisions,
                                 j["collisions_per_particle"].template get<double>());
         out_.print_summary(console_, j, e.box());
         console_ << fmt::format(

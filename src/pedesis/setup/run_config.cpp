@@ -1,6 +1,7 @@
 #include "pedesis/setup/run_config.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/machine_memory.hpp"
 #include "pedesis/io/config_table.hpp"
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/quantities.hpp"
@@ -13,7 +14,6 @@
 #include <filesystem>
 #include <numbers>
 #include <set>
-#include <unistd.h>
 
 namespace pedesis {
 
@@ -392,9 +392,7 @@ void check_particle_budget(const RunConfig& c) {
     // measurements with room to spare (the event engine keeps neighbour lists and events)
     const double per_particle = c.soft() ? 400.0 : c.dynamics == "stepped" ? 300.0 : 600.0;
     const double need = static_cast<double>(n) * per_particle;
-    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-    const double have =
-        pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+    const double have = physical_memory_bytes();
     if (have > 0.0 && need > have)
         throw InputError(fmt::format("{}: [[species]] count: N = {} particles need about {:.3g} GB "
                                      "({:g} bytes each, an estimate), more than this machine's "

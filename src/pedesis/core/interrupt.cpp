@@ -1,16 +1,27 @@
-#include "pedesis/render/interrupt_guard.hpp"
+#include "pedesis/core/interrupt.hpp"
 
-namespace pedesis::render {
+namespace pedesis {
 
 namespace {
 
 volatile std::sig_atomic_t received = 0;
 
+// A second signal while the first is being honoured ends the process at once: the way out
+// of a close that takes too long (its files then stay .part, never passing for complete).
 extern "C" void remember_signal(int sig) {
+    if (received != 0) {
+        std::signal(sig, SIG_DFL);
+        std::raise(sig);
+        return;
+    }
     received = sig;
 }
 
 } // namespace
+
+int interrupt_signal() {
+    return received;
+}
 
 InterruptGuard::InterruptGuard() {
     received = 0;
@@ -37,10 +48,11 @@ void InterruptGuard::restore() {
     ::sigaction(SIGTERM, &old_term_, nullptr);
     ::sigaction(SIGHUP, &old_hup_, nullptr);
     restored_ = true;
+    received = 0; // a signal is the business of the guard that caught it
 }
 
 int InterruptGuard::signal() const {
-    return received;
+    return interrupt_signal();
 }
 
 void InterruptGuard::reraise() {
@@ -49,4 +61,4 @@ void InterruptGuard::reraise() {
     if (sig != 0) ::raise(sig);
 }
 
-} // namespace pedesis::render
+} // namespace pedesis

@@ -1,0 +1,134 @@
+// SIGINT and SIGTERM stop a run of every engine within a second, and leave the run
+// directory complete under final names (no .part file): the log, the last frame, the
+// checkpoint and summary.json. The process then ends by that signal, as the shell expects,
+// and the checkpoint restarts. A run that would never end (a stop 1e9 away) is started,
+// signalled once its output exists, and timed from the signal to its end.
+#include "cli/cli_support.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
+#include <thread>
+#include <unistd.h>
+
+namespace pedesis::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Interrupt : public ScratchDir {
+  protected:
+    struct Ended {
+        int signal = 0;      // the signal that ended it, 0 if it exited
+        int exit_code = -1;  // when it exited
+        double seconds = -1; // from the signal to the end
+        std::string output;
+    };
+
+    // Starts `pedesis run ARGS...` in dir, waits until `out` holds a file, sends `sig`
+    // and waits for the end. Any wait longer than 60 s kills it and fails.
+    Ended run_and_signal(const std::vector<std::string>& args, const std::string& out, int sig) {
+        const fs::path console = dir / ("console_" + std::to_string(++runs_) + ".txt");
+        const pid_t pid = fork();
+        if (pid == 0) {
+            if (chdir(dir.c_str()) != 0) _exit(120);
+            const int fd = open(console.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            dup2(fd, 1);
+            dup2(fd, 2);
+            std::vector<char*> argv{const_cast<char*>(PEDESIS_BINARY), const_cast<char*>("run")};
+            for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+            argv.push_back(nullptr);
+            execv(PEDESIS_BINARY, argv.data());
+            _exit(127);
+        }
+        Ended e;
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        auto has_output = [&] {
+            std::error_code ec;
+            return fs::is_directory(dir / out, ec) && !fs::is_empty(dir / out, ec);
+        };
+        while (!has_output() && std::chrono::steady_clock::now() < give_up)
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        // well into the loop, past the frame and row of step 0
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        const auto sent = std::chrono::steady_clock::now();
+        kill(pid, sig);
+        int status = 0;
+        while (waitpid(pid, &status, WNOHANG) == 0) {
+            if (std::chrono::steady_clock::now() > give_up + std::chrono::seconds(60)) {
+                kill(pid, SIGKILL);
+                waitpid(pid, &status, 0);
+                ADD_FAILURE() << "the run did not end after the signal";
+                break;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+        if (WIFSIGNALED(status)) e.signal = WTERMSIG(status);
+        if (WIFEXITED(status)) e.exit_code = WEXITSTATUS(status);
+        std::ifstream in(console);
+        e.output.assign(std::istreambuf_iterator<char>(in), {});
+        return e;
+    }
+
+    // The interrupted run ended by `sig` within a second, with everything in place.
+    void expect_clean_stop(const Ended& e, const std::string& out, int sig) {
+        EXPECT_EQ(e.signal, sig) << "exit code " << e.exit_code << ": " << e.output;
+        EXPECT_LT(e.seconds, 1.0) << e.output;
+        EXPECT_NE(e.output.find("interrupted by signal " + std::to_string(sig)), std::string::npos)
+            << e.output;
+        EXPECT_NE(e.output.find("--restart " + out + "/checkpoint.bin"), std::string::npos)
+            << e.output;
+        for (const auto& f : fs::directory_iterator(dir / out))
+            EXPECT_EQ(f.path().string().find(".part"), std::string::npos) << f.path();
+        for (const char* name : {"log.csv", "trajectory.gsd", "checkpoint.bin", "summary.json"})
+            EXPECT_TRUE(fs::exists(dir / out / name)) << name << " missing: " << e.output;
+    }
+
+    // A run signalled, then its checkpoint restarted and signalled again: the restart
+    // must load it (a refused checkpoint exits 2 at once) and go on from where it was.
+    void check_engine(const std::string& config, const std::string& clock) {
+        write("forever.toml", config);
+        const Ended first = run_and_signal({"forever.toml", "--out", "first"}, "first", SIGTERM);
+        expect_clean_stop(first, "first", SIGTERM);
+        const auto s1 = nlohmann::json::parse(read("first/summary.json"));
+        const Ended second =
+            run_and_signal({"forever.toml", "--restart", "first/checkpoint.bin", "--out", "second"},
+                           "second", SIGINT);
+        expect_clean_stop(second, "second", SIGINT);
+        const auto s2 = nlohmann::json::parse(read("second/summary.json"));
+        EXPECT_GT(s2[clock].get<double>(), s1[clock].get<double>());
+    }
+
+    int runs_ = 0;
+};
+
+const std::string gsd_frames = "formats = [\"gsd\"]\n";
+
+TEST_F(Interrupt, EventRunStopsCleanlyAndRestarts) {
+    check_engine(small_config("", "length = 20.0", "time = 1e9") + gsd_frames, "time");
+}
+
+TEST_F(Interrupt, SteppedRunStopsCleanlyAndRestarts) {
+    check_engine("dimension = 2\ndynamics = \"stepped\"\nseed = 2\n[box]\nlength = 20.0\n"
+                 "[[species]]\nname = \"A\"\ncount = 40\nradius = 0.5\n[stepped]\ndt = 0.001\n"
+                 "[run]\ntime = 1e9\n[output]\nlog_interval = 0.5\nprogress = false\n" +
+                     gsd_frames,
+                 "time");
+}
+
+TEST_F(Interrupt, SoftRunStopsCleanlyAndRestarts) {
+    check_engine("dimension = 2\ndynamics = \"brownian\"\nseed = 1\n[box]\nlength = 20.0\n"
+                 "[[species]]\nname = \"A\"\ncount = 40\nradius = 1.0\n[initial]\n"
+                 "positions = \"random\"\n[[force]]\nname = \"harmonic\"\nk = 10.0\n"
+                 "[[integrator]]\nname = \"brownian\"\nT = 0.1\ngamma = 1.0\n"
+                 "[run]\nsteps = 1000000000\ndt = 0.001\n[output]\nprogress = false\n"
+                 "log_every = 1000\nsnapshot_every = 100000\n" +
+                     gsd_frames,
+                 "steps");
+}
+
+} // namespace
+} // namespace pedesis::test
