@@ -12,6 +12,7 @@ packages=(
   python3-dev pybind11-dev python3-pytest
   python3-ase python3-vtk9 zlib1g-dev
   clang
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

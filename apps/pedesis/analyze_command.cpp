@@ -6,6 +6,7 @@
 #include "analyze_command.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 
 #include <fmt/core.h>
 
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include <csignal>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -132,7 +134,10 @@ fs::path script_for(const Kind& kind) {
 }
 
 // Runs argv[0] with the arguments, sharing stdout and stderr, and returns its wait status.
-int run_process(const std::vector<std::string>& args) {
+// A signal to pedesis (SIGINT, SIGTERM, SIGHUP) is passed on to the script, which ends
+// without leaving its figure half written (scripts/analyze/figure.py writes, then
+// renames); once it has ended, pedesis ends by the same signal: no orphan goes on.
+int run_process(const std::vector<std::string>& args, const InterruptGuard& guard) {
     std::vector<char*> argv;
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -144,12 +149,20 @@ int run_process(const std::vector<std::string>& args) {
     if (err != 0)
         throw InputError(fmt::format("analyze: cannot start {}: {}", args[0], std::strerror(err)));
     int status = 0;
-    while (::waitpid(pid, &status, 0) < 0) {
-        if (errno != EINTR)
+    bool passed_on = false;
+    // polled, so that a signal between two looks cannot be missed by a blocking wait
+    for (;;) {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) return status;
+        if (done < 0 && errno != EINTR)
             throw std::runtime_error(
                 fmt::format("analyze: waiting for {}: {}", args[0], std::strerror(errno)));
+        if (guard.signal() != 0 && !passed_on) {
+            ::kill(pid, guard.signal());
+            passed_on = true;
+        }
+        ::usleep(10000);
     }
-    return status;
 }
 
 void analyze(const Kind& kind, const AnalyzeArgs& a) {
@@ -161,7 +174,9 @@ void analyze(const Kind& kind, const AnalyzeArgs& a) {
         args.push_back("--out");
         args.push_back(a.out);
     }
-    const int status = run_process(args);
+    InterruptGuard guard;
+    const int status = run_process(args, guard);
+    if (guard.signal() != 0) guard.reraise();
     if (WIFEXITED(status)) {
         const int code = WEXITSTATUS(status);
         if (code == 0) return;

@@ -1,12 +1,14 @@
-// pedesis command line: run, init, analyze, render, bench. Input errors exit with 2, stopped runs
-// with 3.
+// pedesis command line: run, sweep, init, analyze, render, bench. Input errors exit with 2, stopped
+// runs with 3.
 #include "analyze_command.hpp"
 #include "bench_abp.hpp"
 #include "bench_event.hpp"
 #include "bench_stepped.hpp"
 #include "init_command.hpp"
+#include "mpi_world.hpp"
 #include "render_command.hpp"
 #include "run_command.hpp"
+#include "sweep_command.hpp"
 
 #include "pedesis/core/error.hpp"
 
@@ -23,6 +25,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "pedesis " PEDESIS_VERSION " (commit " PEDESIS_COMMIT ")");
     app.require_subcommand(1);
     pedesis::cli::add_run_command(app);
+    pedesis::cli::add_sweep_command(app);
     pedesis::cli::add_init_command(app);
     pedesis::cli::add_analyze_command(app);
     pedesis::cli::add_render_command(app);
@@ -38,7 +41,9 @@ int main(int argc, char** argv) {
         const int code = app.exit(e);
         return code == 0 ? 0 : pedesis::exit_input_error;
     } catch (const pedesis::InputError& e) {
-        fmt::print(stderr, "pedesis: error: {}\n", e.what());
+        // every process of an MPI job reads the same input: one message, not P copies
+        if (pedesis::cli::rank_for_messages() == 0)
+            fmt::print(stderr, "pedesis: error: {}\n", e.what());
         return pedesis::exit_input_error;
     } catch (const pedesis::RunError& e) {
         fmt::print(stderr, "pedesis: run stopped: {}\n", e.what());

@@ -1,5 +1,6 @@
 #include "run_command.hpp"
 
+#include "mpi_world.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
 #include "pedesis/observe/quantities.hpp"
@@ -57,6 +58,12 @@ void add_run_command(CLI::App& app) {
             return;
         }
         if (a->config.empty()) throw CLI::RequiredError("config");
+        // P copies of one run would write one directory P times over
+        if (MpiWorld::get().size() > 1)
+            throw InputError(fmt::format(
+                "{}: pedesis run does not divide one run among {} MPI processes yet; start it "
+                "without mpirun (threads: --threads), or run many configs with pedesis sweep",
+                a->config, MpiWorld::get().size()));
         const RunConfig config = load_run_config(a->config);
         RunOptions o;
         o.config_path = a->config;

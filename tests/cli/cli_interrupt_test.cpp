@@ -29,7 +29,8 @@ class Interrupt : public ScratchDir {
 
     // Starts `pedesis run ARGS...` in dir, waits until `out` holds a file, sends `sig`
     // and waits for the end. Any wait longer than 60 s kills it and fails.
-    Ended run_and_signal(const std::vector<std::string>& args, const std::string& out, int sig) {
+    Ended run_and_signal(const std::vector<std::string>& args, const std::string& out, int sig,
+                         const std::string& command = "run") {
         const fs::path console = dir / ("console_" + std::to_string(++runs_) + ".txt");
         const pid_t pid = fork();
         if (pid == 0) {
@@ -37,7 +38,8 @@ class Interrupt : public ScratchDir {
             const int fd = open(console.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
             dup2(fd, 1);
             dup2(fd, 2);
-            std::vector<char*> argv{const_cast<char*>(PEDESIS_BINARY), const_cast<char*>("run")};
+            std::vector<char*> argv{const_cast<char*>(PEDESIS_BINARY),
+                                    const_cast<char*>(command.c_str())};
             for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
             argv.push_back(nullptr);
             execv(PEDESIS_BINARY, argv.data());
@@ -128,6 +130,22 @@ TEST_F(Interrupt, SoftRunStopsCleanlyAndRestarts) {
                  "log_every = 1000\nsnapshot_every = 100000\n" +
                      gsd_frames,
                  "steps");
+}
+
+// pedesis analyze runs a Python script: a signal reaches it too, and pedesis ends by
+// that signal only once the script has ended (no orphan plotting on), leaving no figure.
+TEST_F(Interrupt, AnalyzePassesTheSignalToItsScript) {
+    write("gas.toml", small_config() + gsd_frames);
+    ASSERT_EQ(run_pedesis("run gas.toml --out gas", dir, 60).exit_code, 0);
+    // "gas" exists and is not empty from the start: the signal comes 0.3 s after launch,
+    // while the script imports numpy and matplotlib
+    const Ended e = run_and_signal({"speed", "gas"}, "gas", SIGTERM, "analyze");
+    EXPECT_EQ(e.signal, SIGTERM) << "exit code " << e.exit_code << ": " << e.output;
+    EXPECT_LT(e.seconds, 1.0) << e.output;
+    // (the brackets keep pgrep from finding the shell that runs it)
+    const std::string orphans = "pgrep -f 'speed[.]py " + (dir / "gas").string() + "' > /dev/null";
+    EXPECT_NE(std::system(orphans.c_str()), 0) << "the script still runs";
+    EXPECT_FALSE(fs::exists(dir / "gas" / "speed_distribution.png"));
 }
 
 } // namespace

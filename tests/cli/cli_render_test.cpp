@@ -80,19 +80,6 @@ formats = ["gsd"]
 progress = false
 )";
 
-// Runs a shell command line (cwd `dir`), stdout and stderr together.
-CliResult shell(const std::string& command, const fs::path& dir) {
-    const std::string cmd = "cd '" + dir.string() + "' && " + command + " 2>&1";
-    CliResult r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf;
-    while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-    const int status = pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
 // pedesis with PATH set to `path` only.
 CliResult run_with_path(const std::string& args, const fs::path& path, const fs::path& dir) {
     return shell("PATH='" + path.string() + "' '" + PEDESIS_BINARY + "' " + args, dir);

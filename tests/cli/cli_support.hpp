@@ -20,14 +20,9 @@ struct CliResult {
     std::string output; // stdout and stderr together
 };
 
-// With timeout_s > 0 the run is killed after that many seconds (exit code 137): a hang
-// fails the test instead of stalling the suite.
-inline CliResult run_pedesis(const std::string& args, const std::filesystem::path& cwd,
-                             int timeout_s = 0) {
-    const std::string limit =
-        timeout_s > 0 ? "timeout -s KILL " + std::to_string(timeout_s) + " " : std::string();
-    const std::string cmd =
-        "cd '" + cwd.string() + "' && " + limit + "'" + PEDESIS_BINARY + "' " + args + " 2>&1";
+// Runs a shell command line in `cwd`, stdout and stderr together.
+inline CliResult shell(const std::string& command, const std::filesystem::path& cwd) {
+    const std::string cmd = "cd '" + cwd.string() + "' && " + command + " 2>&1";
     CliResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
@@ -36,6 +31,15 @@ inline CliResult run_pedesis(const std::string& args, const std::filesystem::pat
     const int status = pclose(pipe);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+}
+
+// With timeout_s > 0 the run is killed after that many seconds (exit code 137): a hang
+// fails the test instead of stalling the suite.
+inline CliResult run_pedesis(const std::string& args, const std::filesystem::path& cwd,
+                             int timeout_s = 0) {
+    const std::string limit =
+        timeout_s > 0 ? "timeout -s KILL " + std::to_string(timeout_s) + " " : std::string();
+    return shell(limit + "'" + PEDESIS_BINARY + "' " + args, cwd);
 }
 
 class ScratchDir : public ::testing::Test {
