@@ -10,6 +10,7 @@
 #include "pedesis/io/tutorial_json.hpp"
 #include "pedesis/io/xyz_reader.hpp"
 #include "pedesis/run/run.hpp"
+#include "pedesis/run/sweep.hpp"
 #include "pedesis/setup/run_config.hpp"
 
 #include <sstream>
@@ -83,6 +84,23 @@ inline void checkpoint_input(const std::uint8_t* data, std::size_t size) {
     o.config_path = dir / "fuzz.toml";
     std::ostringstream console;
     (void)make_run(c, o, console);
+}
+
+// The sweep reader (pedesis sweep SWEEP): arbitrary text as the sweep file, beside a
+// small base config it may name as base.toml; every point's config is built and checked,
+// nothing is run or written.
+inline void sweep_input(const std::uint8_t* data, std::size_t size) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("pedesis_fuzz_sweep_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "base.toml", std::ios::trunc)
+        << "dimension = 2\nseed = 3\n[box]\nlength = 20.0\nboundary = \"wall\"\n"
+           "[[species]]\nname = \"A\"\ncount = 20\nradius = 0.5\n[event]\n"
+           "restitution = 1.0\n[run]\ntime = 2.0\n";
+    const auto path = dir / "sweep.toml";
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    (void)load_sweep(path.string(), dir / "out");
 }
 
 } // namespace pedesis::fuzz

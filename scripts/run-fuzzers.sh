@@ -13,7 +13,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 out="$build/fuzz-out"
 mkdir -p "$out"
 status=0
-for target in fuzz_config fuzz_tutorial_json fuzz_xyz fuzz_gsd fuzz_checkpoint; do
+for target in fuzz_config fuzz_tutorial_json fuzz_xyz fuzz_gsd fuzz_checkpoint fuzz_sweep; do
   corpus="$out/$target-corpus"
   rm -rf "$corpus" && mkdir -p "$corpus"
   cp "$root/fuzz/corpus/$target/"* "$corpus/"

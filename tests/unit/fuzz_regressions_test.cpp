@@ -70,3 +70,6 @@ TEST(FuzzRegressions, CheckpointSeedsAreValidCheckpoints) {
             << p;
     }
 }
+TEST(FuzzRegressions, SweepReader) {
+    EXPECT_GE(replay("fuzz_sweep", pedesis::fuzz::sweep_input), 3);
+}

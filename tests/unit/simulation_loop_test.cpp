@@ -130,6 +130,33 @@ TEST(SimulationLoop, InfinityWhereTheCatalogueDoesNotAllowItStopsTheRun) {
     expect_stops_at_step_25(std::numeric_limits<double>::infinity(), "inf");
 }
 
+TEST(SimulationLoop, ANaNFoundByTheLastRowOfCloseStopsTheRunToo) {
+    // a script advances to step 35 (rows every 10 steps) and closes: the row close writes
+    // at step 35 is the first to see the NaN (from step 32 on)
+    Dir dir("pedesis_simulation_loop_close");
+    ScriptedEngine engine(32, std::numeric_limits<double>::quiet_NaN(), 1000);
+    RunOptions o;
+    o.out_dir = dir.path;
+    Simulation<2> sim(engine,
+                      {Trigger::every_steps(10), Trigger::every_steps(10), Trigger::never()},
+                      {{"xyz"}, {}}, o);
+    EXPECT_EQ(sim.advance(35), nullptr);
+    try {
+        sim.close("script");
+        FAIL() << "the last row's NaN must stop the run";
+    } catch (const RunError& e) {
+        EXPECT_NE(std::string(e.what()).find("at step 35"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("last good snapshot is frame 3 at t = 3"),
+                  std::string::npos)
+            << e.what();
+    }
+    const std::string log = read(dir.path / "log.csv"); // rows 0, 10, 20, 30
+    EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 5) << log;
+    EXPECT_FALSE(has_part_files(dir.path));
+    EXPECT_FALSE(fs::exists(dir.path / "summary.json"));
+    EXPECT_EQ(engine.finished_by, "");
+}
+
 TEST(SimulationLoop, InfinityWhereTheCatalogueAllowsItIsAValue) {
     // mean_free_time is +inf in every row of the scripted engine
     Dir dir("pedesis_simulation_loop_inf_ok");

@@ -123,10 +123,7 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
                 }
         }
     } catch (const RunError& e) {
-        // the state is broken: keep what was written while it was good
-        closed_ = true;
-        close_files();
-        throw RunError(std::string(e.what()) + failure_note());
+        fail(e);
     }
     // (any other exception, an interrupt or a callback's error, leaves a good state)
     return stopped_by_;
@@ -139,7 +136,11 @@ template <int D> void Simulation<D>::close(const char* ended_by) {
     if (!in_directory()) return;
     // the end of the run always has a log row (summary.json's "final" is that row)
     if (rows_this_run_ == 0 || last_row_step_ != engine_.step() || last_row_time_ != engine_.time())
-        write_log_row();
+        try {
+            write_log_row();
+        } catch (const RunError& e) {
+            fail(e);
+        }
     if (frames_this_run_ == 0 || last_frame_step_ != engine_.step() ||
         last_frame_time_ != engine_.time())
         write_frame();
@@ -209,6 +210,13 @@ template <int D> void Simulation<D>::write_frame() {
 template <int D> void Simulation<D>::close_files() {
     if (log_) log_->commit();
     if (frames_) frames_->commit();
+}
+
+template <int D> void Simulation<D>::fail(const RunError& e) {
+    // the state is broken: keep what was written while it was good
+    closed_ = true;
+    close_files();
+    throw RunError(std::string(e.what()) + failure_note());
 }
 
 template <int D> std::string Simulation<D>::failure_note() const {

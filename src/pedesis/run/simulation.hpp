@@ -4,6 +4,7 @@
 // same way for all: the last frame, the checkpoint, the summary. A run that fails
 // mid-way (RunError: a blow-up, inelastic collapse) keeps its log and frames, complete
 // and under their final names, and says which frame was the last good one.
+#include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/run/run_engine.hpp"
@@ -89,6 +90,9 @@ template <int D> class Simulation {
     void write_log_row();
     void close_files();
     std::string failure_note() const;
+    // Ends a run whose state broke (RunError): the files so far are committed, and the
+    // error is thrown again with the last good snapshot named.
+    [[noreturn]] void fail(const RunError& e);
 
     RunEngine<D>& engine_;
     Schedule schedule_;

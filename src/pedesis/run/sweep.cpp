@@ -177,8 +177,9 @@ Sweep load_sweep(const std::string& path, const std::optional<fs::path>& out) {
     }
     std::size_t total = 1;
     for (const auto& v : values) {
-        if (total > 100000 / v.size())
-            throw InputError(path + ": [vary] makes more than 100000 points");
+        if (total > 10000 / v.size())
+            throw InputError(path + ": [vary] makes more than 10000 points (one run directory "
+                                    "each); split the sweep");
         total *= v.size();
     }
 
