@@ -13,10 +13,12 @@ namespace pedesis::cli {
 
 namespace {
 
-// The number of processes a launcher started, from its environment (OpenMPI, PMIx,
-// Slurm's srun, MPICH's Hydra); 0 when none did.
+// The number of processes a launcher started, from its environment: OpenMPI's mpirun, a
+// PMI launcher (MPICH's Hydra, srun --mpi=pmi2); 1 for a PMIx launcher (srun --mpi=pmix),
+// which gives the size only after MPI_Init; 0 when no launcher did. (Not SLURM_NTASKS: a
+// batch script has it without srun.)
 int launched_size() {
-    for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMIX_SIZE", "PMI_SIZE", "SLURM_NTASKS"})
+    for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
         if (const char* v = std::getenv(var)) return std::atoi(v);
     return std::getenv("PMIX_RANK") ? 1 : 0;
 }
