@@ -155,8 +155,10 @@ TEST_F(Sweep, BadSweepFilesAreRefusedBeforeAnyRun) {
     refused(head + "\"species.A.count\" = [2.5]\n", "holds a value of type integer there, the "
                                                     "sweep gives floating-point");
     refused(head + "\"event.restitution\" = []\n", "must be a non-empty list");
-    refused(head + "\"run.stop_time\" = [1.0]\n", "point_000.toml");  // not a config key
-    refused(head + "\"event.restitution\" = [1.5]\n", "restitution"); // out of range
+    refused(head + "\"run.stop_time\" = [1.0]\n", "point_000.toml");     // not a config key
+    refused(head + "\"event.restitution\" = [1.5]\n", "restitution");    // out of range
+    refused(head + "\"\" = [1.0]\n", "[vary] key '' has an empty part"); // a fuzzing find
+    refused(head + "\"box.\" = [1.0]\n", "[vary] key 'box.' has an empty part");
     refused("[vary]\nseed = [1]\n", "needs base = ");
     refused("base = \"none.toml\"\n[vary]\nseed = [1]\n", "no such config file");
     refused(head + "seed = [1]\nextra = 2\n", "extra");

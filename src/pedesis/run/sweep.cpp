@@ -41,9 +41,15 @@ std::string names_of(const toml::array& tables) {
 // sweep file's line.
 std::pair<toml::table*, std::string> parent_of(toml::table& config, const std::string& key,
                                                const std::string& at, const std::string& base) {
+    // every part, empty ones too ("", "a.", "a..b" are refused)
     std::vector<std::string> parts;
-    std::stringstream in(key);
-    for (std::string p; std::getline(in, p, '.');) parts.push_back(p);
+    for (std::size_t from = 0;;) {
+        const std::size_t dot = key.find('.', from);
+        parts.push_back(
+            key.substr(from, dot == std::string::npos ? std::string::npos : dot - from));
+        if (dot == std::string::npos) break;
+        from = dot + 1;
+    }
     for (const std::string& p : parts)
         if (p.empty()) throw InputError(at + ": [vary] key '" + key + "' has an empty part");
     toml::table* t = &config;
