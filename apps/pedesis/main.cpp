@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
         if (pedesis::cli::rank_for_messages() == 0)
             fmt::print(stderr, "pedesis: error: {}\n", e.what());
         return pedesis::exit_input_error;
+    } catch (const pedesis::cli::SilentExit& e) {
+        return e.code;
     } catch (const pedesis::RunError& e) {
         fmt::print(stderr, "pedesis: run stopped: {}\n", e.what());
         return pedesis::exit_run_error;

@@ -31,4 +31,10 @@ class MpiWorld {
 // The rank of this process if MPI is up, else 0; never initialises MPI (for messages).
 int rank_for_messages();
 
+// Ends the command with `code` and no message: the other processes of an MPI job that
+// all reached the same outcome, of which process 0 tells.
+struct SilentExit {
+    int code;
+};
+
 } // namespace pedesis::cli

@@ -130,9 +130,11 @@ void run_sweep(const SweepArgs& a) {
         std::cout << fmt::format("pedesis sweep: {} of {} points done; table {}\n", done,
                                  sweep.points.size(), (sweep.out / "sweep.csv").string());
     }
-    if (failed)
+    if (failed) {
+        if (!talk) throw SilentExit{exit_run_error};
         throw RunError("a point of the sweep failed (its message is in its logs/*.failed file); "
                        "the other points ran");
+    }
 }
 
 } // namespace

@@ -114,4 +114,20 @@ inline std::string small_config(const std::string& extra_species = "",
            "[run]\n" + run + "\n[output]\nlog_interval = 0.5\nprogress = false\n";
 }
 
+// A soft config on `init.json` (written by pedesis init random in `dir`), and a sweep of
+// it whose second point names a file that does not exist: the run of that point fails
+// (exit 3 at the end), the other runs.
+inline std::string sweep_with_a_failing_point(const std::filesystem::path& dir) {
+    const CliResult init =
+        run_pedesis("init random --phi 0.1 --L 20 --rcut 1.0 -o init.json", dir, 60);
+    EXPECT_EQ(init.exit_code, 0) << init.output;
+    std::ofstream(dir / "soft.toml")
+        << "dimension = 2\ndynamics = \"brownian\"\nseed = 1\n[initial]\nfile = "
+           "\"init.json\"\n[[force]]\nname = \"harmonic\"\nk = 10.0\n[[integrator]]\n"
+           "name = \"brownian\"\nT = 0.1\ngamma = 1.0\n[run]\nsteps = 50\ndt = 0.01\n"
+           "[output]\nprogress = false\nformats = []\n";
+    return "base = \"soft.toml\"\n[vary]\n\"initial.file\" = [\"" + (dir / "init.json").string() +
+           "\", \"missing.json\"]\n";
+}
+
 } // namespace pedesis::test

@@ -137,6 +137,20 @@ TEST_F(Sweep, ASignalStopsTheSweepAndTheNextCallGoesOn) {
               (std::vector<std::string>{"done", "done", "done"}));
 }
 
+// What only the run of a point finds (here a missing file) fails that point: the others
+// run, the table says which failed, its message is kept, and the sweep ends with exit 3.
+TEST_F(Sweep, AFailingPointIsRecordedAndTheOthersRun) {
+    write("failing.toml", sweep_with_a_failing_point(dir));
+    const CliResult r = run_pedesis("sweep failing.toml --out failing", dir, 120);
+    EXPECT_EQ(r.exit_code, 3) << r.output;
+    EXPECT_NE(r.output.find("point_001 failed: failing/configs/missing.json: cannot open"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(csv_columns(read("failing/sweep.csv")).cells.at("status"),
+              (std::vector<std::string>{"done", "failed"}));
+    EXPECT_NE(read("failing/logs/point_001.failed").find("missing.json"), std::string::npos);
+}
+
 TEST_F(Sweep, BadSweepFilesAreRefusedBeforeAnyRun) {
     const auto refused = [&](const std::string& text, const std::string& fragment) {
         write("bad.toml", text);

@@ -59,6 +59,21 @@ TEST_F(MpiSweep, BadInputGivesOneMessageAndExitCodeTwo) {
     EXPECT_NE(r.output.find("has no [[force]] named 'lj'"), std::string::npos) << r.output;
 }
 
+// A point that fails on one process leaves no other waiting: exit 3 everywhere (within
+// the 300 s kill timer of run_mpi), one closing message, the same table as serially.
+TEST_F(MpiSweep, AFailingPointEndsEveryProcessWithExitThree) {
+    write("failing.toml", sweep_with_a_failing_point(dir));
+    const CliResult serial = run_pedesis("sweep failing.toml --out serial", dir, 120);
+    ASSERT_EQ(serial.exit_code, 3) << serial.output;
+    const CliResult r = run_mpi(2, "sweep failing.toml --out np2", dir);
+    EXPECT_EQ(r.exit_code, 3) << r.output;
+    const std::string closing = "a point of the sweep failed";
+    EXPECT_NE(r.output.find(closing), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find(closing), r.output.rfind(closing)) << r.output;
+    // the table (statuses and summaries) is the serial one
+    EXPECT_EQ(read("np2/sweep.csv"), read("serial/sweep.csv"));
+}
+
 // Until a run is divided among processes, P copies of it must not write one directory.
 TEST_F(MpiSweep, RunUnderSeveralProcessesIsRefusedOnce) {
     write("base.toml", soft_base);

@@ -230,6 +230,18 @@ bool point_done(const SweepPoint& point) {
     return why.is_string() && why != "interrupted" && why != "script" && why != "";
 }
 
+namespace {
+
+PointOutcome failed(const SweepPoint& point, const char* kind, const std::string& message,
+                    std::ostream& lines, std::ostream& console) {
+    lines << "pedesis: " << kind << ": " << message << "\n";
+    write_file_atomically(failure_note(point), [&](std::ostream& out) { out << message << "\n"; });
+    console << fmt::format("pedesis sweep: {} failed: {}\n", point.name, message);
+    return PointOutcome::failed;
+}
+
+} // namespace
+
 fs::path failure_note(const SweepPoint& point) {
     fs::path p = point.console;
     return p.replace_extension(".failed");
@@ -250,11 +262,11 @@ PointOutcome run_point(const SweepPoint& point, std::ostream& console) {
         run->run();
         return run->stopped_by() ? PointOutcome::done : PointOutcome::interrupted;
     } catch (const RunError& e) {
-        lines << "pedesis: run stopped: " << e.what() << "\n";
-        write_file_atomically(failure_note(point),
-                              [&](std::ostream& out) { out << e.what() << "\n"; });
-        console << fmt::format("pedesis sweep: {} failed: {}\n", point.name, e.what());
-        return PointOutcome::failed;
+        return failed(point, "run stopped", e.what(), lines, console);
+    } catch (const InputError& e) {
+        // what only the run finds (a placement that does not fit, an unreadable file):
+        // this point fails, the others go on, and no process of an MPI job is left behind
+        return failed(point, "error", e.what(), lines, console);
     }
 }
 

@@ -53,8 +53,9 @@ bool point_done(const SweepPoint& point);
 enum class PointOutcome { done, failed, interrupted };
 
 // Runs one point (its config written to point.config, its console lines to
-// point.console) in this process; a failed run (RunError) is reported on `console`, its
-// message kept in failure_note(point), and returned, not thrown. A caught signal
+// point.console) in this process; a run that fails (RunError, or an InputError that only
+// the run finds) is reported on `console`, its message kept in failure_note(point), and
+// returned, not thrown. A caught signal
 // (core/interrupt.hpp) ends the run early.
 PointOutcome run_point(const SweepPoint& point, std::ostream& console);
 
