@@ -1,13 +1,13 @@
 #include "soft_model.hpp"
 
 #include "pedesis/core/error.hpp"
-#include "pedesis/core/interrupt.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/tutorial_json.hpp"
 #include "pedesis/io/vtp_writer.hpp"
 #include "pedesis/observe/soft_observables.hpp"
 #include "pedesis/run/script_engine.hpp"
 #include "pedesis/run/simulation.hpp"
+#include "pedesis/run/soft_run.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/run_config.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
@@ -116,17 +116,13 @@ std::unique_ptr<SystemModel> read_system_d(const std::filesystem::path& path, st
 // is t0 + (step - step0) dt, as the CLI counts it.
 template <int D> class TutorialEngine final : public ScriptEngine<D> {
   public:
-    TutorialEngine(SoftState<D>& state, Evolver<D>& evolver, double t0, std::uint64_t step0,
-                   double dt)
-        : s_(state), evolver_(evolver), t0_(t0), step0_(step0), dt_(dt) {}
+    TutorialEngine(SoftState<D>& state, Evolver<D>& evolver, SoftClock clock)
+        : s_(state), evolver_(evolver), clock_(clock) {}
 
     std::uint64_t step() const override { return s_.step; }
     double time() const override { return s_.time; }
     Advance advance(std::uint64_t until_step, double) override {
-        while (s_.step < until_step && !interrupt_requested()) {
-            evolver_.evolve(dt_);
-            s_.time = t0_ + static_cast<double>(s_.step - step0_) * dt_;
-        }
+        evolve_until(s_, evolver_, clock_, until_step);
         return {};
     }
     Frame<D> frame() override { return s_.frame(); }
@@ -134,9 +130,7 @@ template <int D> class TutorialEngine final : public ScriptEngine<D> {
   private:
     SoftState<D>& s_;
     Evolver<D>& evolver_;
-    double t0_;
-    std::uint64_t step0_;
-    double dt_;
+    SoftClock clock_;
 };
 
 template <int D> class EvolverD final : public EvolverModel {
@@ -165,7 +159,7 @@ template <int D> class EvolverD final : public EvolverModel {
         // the CLI's in the last bits
         if (!sorted_order_.empty()) evolver_.reorder(sorted_order_);
         sorted_order_.clear();
-        TutorialEngine<D> engine(s, evolver_, t0_, step0_, dt_);
+        TutorialEngine<D> engine(s, evolver_, SoftClock{t0_, step0_, dt_});
         const RunOptions no_directory;
         Simulation<D> sim(engine, Schedule{}, OutputChoice{}, no_directory);
         if (hooks.every && hooks.between)

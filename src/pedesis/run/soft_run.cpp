@@ -1,7 +1,6 @@
 #include "pedesis/run/soft_run.hpp"
 
 #include "pedesis/core/error.hpp"
-#include "pedesis/core/interrupt.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/observe/soft_observables.hpp"
 #include "pedesis/observe/thermo.hpp"
@@ -77,14 +76,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     double time() const override { return state_.time; }
 
     Advance advance(std::uint64_t until_step, double until_time) override {
-        const std::uint64_t target = std::min<std::uint64_t>(until_step, c_.steps);
-        // a time target within rounding of the clock k dt is reached
-        while (state_.step < target && state_.time < until_time - 1e-9 * c_.dt &&
-               !interrupt_requested()) {
-            evolver_->evolve(c_.dt);
-            // a multiple of dt, not a running sum: t = 10 after 1000 steps of 0.01
-            state_.time = time_start_ + static_cast<double>(state_.step - step_start_) * c_.dt;
-        }
+        evolve_until(state_, *evolver_, SoftClock{time_start_, step_start_, c_.dt},
+                     std::min<std::uint64_t>(until_step, c_.steps), until_time);
         return {state_.step >= c_.steps ? "steps" : nullptr, false};
     }
 
