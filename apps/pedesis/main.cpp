@@ -48,7 +48,9 @@ int main(int argc, char** argv) {
     } catch (const pedesis::cli::SilentExit& e) {
         return e.code;
     } catch (const pedesis::RunError& e) {
-        fmt::print(stderr, "pedesis: run stopped: {}\n", e.what());
+        // a run divided among MPI processes stops on all with process 0's message
+        if (pedesis::cli::rank_for_messages() == 0)
+            fmt::print(stderr, "pedesis: run stopped: {}\n", e.what());
         return pedesis::exit_run_error;
     } catch (const std::exception& e) {
         fmt::print(stderr, "pedesis: internal error: {}\n", e.what());

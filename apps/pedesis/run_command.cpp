@@ -1,5 +1,6 @@
 #include "run_command.hpp"
 
+#include "mpi_communicator.hpp"
 #include "mpi_world.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
@@ -11,9 +12,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 namespace pedesis::cli {
 
@@ -58,31 +61,44 @@ void add_run_command(CLI::App& app) {
             return;
         }
         if (a->config.empty()) throw CLI::RequiredError("config");
-        // P copies of one run would write one directory P times over
-        if (MpiWorld::get().size() > 1)
-            throw InputError(fmt::format(
-                "{}: pedesis run does not divide one run among {} MPI processes yet; start it "
-                "without mpirun (threads: --threads), or run many configs with pedesis sweep",
-                a->config, MpiWorld::get().size()));
+        // (first: under mpirun, only process 0 may tell what is wrong with the config)
+        const std::unique_ptr<Communicator> comm = world_communicator();
         const RunConfig config = load_run_config(a->config);
+        // Under mpirun the soft engine divides the box among the processes; the hard
+        // engines run on one (P copies would write one directory P times over).
+        if (comm && !config.soft())
+            throw InputError(fmt::format(
+                "{}: the {} engine runs on one process, and mpirun started {}; start it without "
+                "mpirun (threads: --threads), or run many configs with pedesis sweep",
+                a->config, config.dynamics, comm->size()));
         RunOptions o;
+        o.comm = comm.get();
         o.config_path = a->config;
         o.out_dir = a->out.empty()
                         ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
                         : std::filesystem::path(a->out);
         if (!a->restart.empty()) o.restart = a->restart;
-        choose_threads(a->threads > 0 ? std::optional<int>(a->threads) : std::nullopt, std::cout);
+        // only process 0 talks; every process of an MPI run takes one thread unless told
+        // otherwise (P processes of idle-core threads each would oversubscribe the cores)
+        std::ostringstream unheard;
+        std::ostream& console = comm && comm->rank() != 0 ? unheard : std::cout;
+        std::optional<int> threads;
+        if (a->threads > 0)
+            threads = a->threads;
+        else if (comm && !std::getenv("OMP_NUM_THREADS"))
+            threads = 1;
+        choose_threads(threads, console);
         InterruptGuard guard;
-        const std::unique_ptr<Run> run = make_run(config, o, std::cout);
+        const std::unique_ptr<Run> run = make_run(config, o, console);
         if (guard.signal() != 0) guard.reraise(); // nothing is written yet
         run->run();
         if (guard.signal() != 0) {
-            std::cout << fmt::format(
+            console << fmt::format(
                 "pedesis: interrupted by signal {} ({}) at step {} (t = {:.6g}); the run "
                 "directory is complete up to here: continue with --restart {}\n",
                 guard.signal(), strsignal(guard.signal()), run->step(), run->time(),
                 (o.out_dir / "checkpoint.bin").string());
-            std::cout.flush();
+            console.flush();
             guard.reraise();
         }
     });

@@ -1,19 +1,10 @@
 // `pedesis sweep` under mpirun: the points shared among 2 and 3 processes give the same
 // table as a serial run, byte for byte; bad input gives one message, not one per process,
 // and exit code 2 (no process is left waiting).
-#include "cli/cli_support.hpp"
+#include "mpi/mpi_support.hpp"
 
 namespace pedesis::test {
 namespace {
-
-// mpirun as root needs --allow-run-as-root; --oversubscribe lets 3 processes share the
-// 2 cores of a small machine.
-CliResult run_mpi(int processes, const std::string& args, const std::filesystem::path& cwd) {
-    return shell("timeout -s KILL 300 '" + std::string(PEDESIS_MPIEXEC) +
-                     "' --allow-run-as-root --oversubscribe -np " + std::to_string(processes) +
-                     " '" + PEDESIS_BINARY + "' " + args,
-                 cwd);
-}
 
 class MpiSweep : public ScratchDir {};
 
@@ -74,13 +65,14 @@ TEST_F(MpiSweep, AFailingPointEndsEveryProcessWithExitThree) {
     EXPECT_EQ(read("np2/sweep.csv"), read("serial/sweep.csv"));
 }
 
-// Until a run is divided among processes, P copies of it must not write one directory.
-TEST_F(MpiSweep, RunUnderSeveralProcessesIsRefusedOnce) {
-    write("base.toml", soft_base);
-    const CliResult r = run_mpi(2, "run base.toml --out out", dir);
+// The hard-sphere engines run on one process: P copies of one run must not write one
+// directory.
+TEST_F(MpiSweep, AnEventRunUnderSeveralProcessesIsRefusedOnce) {
+    const std::string config =
+        std::string(PEDESIS_SOURCE_DIR) + "/examples/course_1_relaxation.toml";
+    const CliResult r = run_mpi(2, "run '" + config + "' --out out", dir);
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_NE(r.output.find("does not divide one run among 2 MPI processes"), std::string::npos)
-        << r.output;
+    EXPECT_NE(r.output.find("the event engine runs on one process"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("pedesis: error:"), r.output.rfind("pedesis: error:")) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }

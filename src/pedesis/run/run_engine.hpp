@@ -6,6 +6,7 @@
 // triggers, the frames, the failure path and the order of the files are the
 // Simulation's, written once.
 #include "pedesis/core/frame.hpp"
+#include "pedesis/core/interrupt.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +34,12 @@ template <int D> class RunEngine {
     // the config. It may return earlier (the stepped engine returns after every step);
     // the Simulation then asks again.
     virtual Advance advance(std::uint64_t until_step, double until_time) = 0;
+    // Whether a caught signal asks the run to stop (a run divided among processes
+    // answers the same on all of them).
+    virtual bool interrupted() const { return interrupt_requested(); }
+
+    // Under a Communicator (RunOptions::comm) every process makes every call below, in the
+    // same order, and only process 0's answers are whole (frame, summary).
 
     // The current state, valid until the next call that changes the engine.
     virtual Frame<D> frame() = 0;

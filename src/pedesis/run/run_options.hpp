@@ -1,5 +1,7 @@
 #pragma once
 // What the command line adds to a config for every engine's run.
+#include "pedesis/core/communicator.hpp"
+
 #include <filesystem>
 #include <optional>
 
@@ -9,6 +11,9 @@ struct RunOptions {
     std::filesystem::path out_dir;
     std::optional<std::filesystem::path> restart; // checkpoint to continue from
     std::filesystem::path config_path;
+    // The processes one soft-engine run is divided among (null: this one alone). Only
+    // process 0 writes the run directory and prints; the others compute.
+    Communicator* comm = nullptr;
 };
 
 } // namespace pedesis

@@ -47,16 +47,17 @@ Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice 
 template <int D> void Simulation<D>::open() {
     if (opened_) return;
     opened_ = true;
-    if (in_directory()) {
-        const auto& dir = options_.out_dir;
-        const std::vector<const char*> stale = engine_.stale_results();
-        prepare_run_directory(dir, options_.config_path, stale);
-        log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
-        std::string header;
-        for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged_[c];
-        log_->append(header + "\n");
-        frames_ = std::make_unique<FrameWriters<D>>(dir, outputs_.formats);
-    }
+    if (in_directory())
+        on_process_zero(options_.comm, [&] {
+            const auto& dir = options_.out_dir;
+            const std::vector<const char*> stale = engine_.stale_results();
+            prepare_run_directory(dir, options_.config_path, stale);
+            log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
+            std::string header;
+            for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged_[c];
+            log_->append(header + "\n");
+            frames_ = std::make_unique<FrameWriters<D>>(dir, outputs_.formats);
+        });
 
     const bool fresh = !options_.restart;
     engine_.start(fresh);
@@ -87,7 +88,7 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
         open();
         // a signal (core/interrupt.hpp) ends the loop at the engine's next return, with
         // the state whole: the caller decides whether to close the run or go on
-        while (!stopped_by_ && !reached() && !interrupt_requested()) {
+        while (!stopped_by_ && !reached() && !engine_.interrupted()) {
             std::uint64_t until_step = max_step;
             double until_time = max_time;
             for (const Trigger* t : {&schedule_.log, &schedule_.frames, &schedule_.checkpoint}) {
@@ -145,7 +146,7 @@ template <int D> void Simulation<D>::close(const char* ended_by) {
         last_frame_time_ != engine_.time())
         write_frame();
     engine_.save_checkpoint(options_.out_dir / "checkpoint.bin");
-    close_files();
+    on_process_zero(options_.comm, [&] { close_files(); });
     nlohmann::json summary = engine_.summary(stopped_by_ ? stopped_by_ : ended_by);
     summary["stopped_by"] = stopped_by_ ? stopped_by_ : ended_by;
     // every quantity the engine measures, by its catalogue name (observe/quantities.hpp);
@@ -157,14 +158,16 @@ template <int D> void Simulation<D>::close(const char* ended_by) {
         else
             final_row[logged_[c]] = values_.at(c);
     }
-    write_file_atomically(options_.out_dir / "summary.json",
-                          [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+    on_process_zero(options_.comm, [&] {
+        write_file_atomically(options_.out_dir / "summary.json",
+                              [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+    });
     engine_.finish(summary);
 }
 
 template <int D> void Simulation<D>::run() {
     advance();
-    close(interrupt_requested() ? "interrupted" : "");
+    close(engine_.interrupted() ? "interrupted" : "");
 }
 
 // Every value with 10 significant digits (counts as integers): "inf" and "nan" as
@@ -185,22 +188,26 @@ template <int D> void Simulation<D>::write_log_row() {
     ++rows_this_run_;
     last_row_step_ = engine_.step();
     last_row_time_ = engine_.time();
-    if (!log_) return;
-    fmt::memory_buffer row;
-    for (std::size_t k = 0; k < columns_.size(); ++k) {
-        if (k) row.push_back(',');
-        const double v = values_.at(columns_[k]);
-        if (is_count_[columns_[k]])
-            fmt::format_to(std::back_inserter(row), "{}", static_cast<std::uint64_t>(v));
-        else
-            fmt::format_to(std::back_inserter(row), "{:.10g}", v);
-    }
-    row.push_back('\n');
-    log_->append(fmt::to_string(row));
+    if (!in_directory()) return;
+    on_process_zero(options_.comm, [&] {
+        fmt::memory_buffer row;
+        for (std::size_t k = 0; k < columns_.size(); ++k) {
+            if (k) row.push_back(',');
+            const double v = values_.at(columns_[k]);
+            if (is_count_[columns_[k]])
+                fmt::format_to(std::back_inserter(row), "{}", static_cast<std::uint64_t>(v));
+            else
+                fmt::format_to(std::back_inserter(row), "{:.10g}", v);
+        }
+        row.push_back('\n');
+        log_->append(fmt::to_string(row));
+    });
 }
 
 template <int D> void Simulation<D>::write_frame() {
-    frames_->write(engine_.frame(), engine_.frames());
+    // (every process makes the engine's call: under a Communicator it gathers the state)
+    const Frame<D> frame = engine_.frame();
+    on_process_zero(options_.comm, [&] { frames_->write(frame, engine_.frames()); });
     engine_.frame_written();
     ++frames_this_run_;
     last_frame_step_ = engine_.step();

@@ -8,6 +8,7 @@
 #include "pedesis/run/soft_checkpoint.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/build_system.hpp"
+#include "pedesis/soft/domain_decomposition.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
 #include <fmt/format.h>
@@ -60,10 +61,18 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                 book_.start[state_.p.tag[i]] = state_.unwrapped(i);
         }
         read_observable_parameters(table);
+        particles_ = state_.size();
+        if (o_.comm && o_.comm->size() > 1) {
+            // every process built or loaded the whole state, and keeps its domain's share
+            const double reach = evolver_->interaction_reach();
+            domain_ = std::make_unique<DomainDecomposition<D>>(*o_.comm, state_.box, reach);
+            domain_->scatter(state_);
+            evolver_->set_domain(domain_.get());
+        }
         // built here so that a box too small for the cutoff is reported before any output
         // exists; a restored run has its list already (building now could rebuild it at
         // another point of the step than the continuous run did)
-        if (!o_.restart) evolver_->neighbor_list();
+        if (!o_.restart || domain_) evolver_->neighbor_list();
     }
 
     Schedule schedule() const {
@@ -75,18 +84,22 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     std::uint64_t step() const override { return state_.step; }
     double time() const override { return state_.time; }
 
+    bool interrupted() const override { return evolver_->interrupted(); }
+
     Advance advance(std::uint64_t until_step, double until_time) override {
+        whole_current_ = false;
         evolve_until(state_, *evolver_, SoftClock{time_start_, step_start_, c_.dt},
                      std::min<std::uint64_t>(until_step, c_.steps), until_time);
         return {state_.step >= c_.steps ? "steps" : nullptr, false};
     }
 
-    Frame<D> frame() override { return state_.frame(); }
+    Frame<D> frame() override { return whole().frame(); }
     std::uint64_t frames() const override { return book_.frames; }
     void frame_written() override { ++book_.frames; }
 
     void save_checkpoint(const std::filesystem::path& path) override {
-        save_soft_checkpoint(path, state_, *evolver_, book_);
+        const SoftState<D>& s = whole();
+        on_process_zero(o_.comm, [&] { save_soft_checkpoint(path, s, *evolver_, book_); });
     }
 
     std::vector<const char*> stale_results() const override { return {"summary.json"}; }
@@ -100,8 +113,16 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     }
 
     void measure(std::vector<double>& values) override {
-        const auto& s = state_;
-        const PairTotals pair = evolver_->pair_totals();
+        const PairTotals pair = evolver_->pair_totals(); // (collective under a decomposition)
+        const auto& s = whole();
+        if (!writer()) {
+            // process 0's row, so that every process sees the same (a NaN stops all)
+            std::vector<double> row;
+            o_.comm->broadcast(row, 0);
+            values.insert(values.end(), row.begin(), row.end());
+            return;
+        }
+        const std::size_t first = values.size();
         const double V = s.box.volume();
         double ideal = 0.0;
         SpeciesKinetics k;
@@ -132,15 +153,27 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             book_.sum_temperature += k.temperature();
         }
         progress(order, pressure);
+        if (domain_) {
+            std::vector<double> row(values.begin() + static_cast<std::ptrdiff_t>(first),
+                                    values.end());
+            o_.comm->broadcast(row, 0);
+        }
     }
 
     void start(bool fresh) override {
         console_ << fmt::format(
             "pedesis: {}D {} run, N = {}, box {}, dt = {:g}, {} steps, list cutoff {:g} + "
             "skin {:g}, output in {}\n",
-            D, c_.dynamics, state_.size(), box_text(), c_.dt, c_.steps, evolver_->list_cutoff(),
+            D, c_.dynamics, particles_, box_text(), c_.dt, c_.steps, evolver_->list_cutoff(),
             evolver_->skin(), o_.out_dir.string());
+        if (domain_) {
+            std::string grid;
+            for (int a = 0; a < D; ++a)
+                grid += fmt::format("{}{}", a ? " x " : "", domain_->grid()[a]);
+            console_ << fmt::format("  {} MPI processes, domains {}\n", o_.comm->size(), grid);
+        }
         if (fresh) evolver_->compute_forces(); // so that frame 0 shows them; the step reuses them
+        whole_current_ = false;
         wall_start_ = std::chrono::steady_clock::now();
         step_start_ = state_.step;
         time_start_ = state_.time;
@@ -149,20 +182,38 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     nlohmann::json summary(const char* /*stopped_by*/) override {
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+        const SoftState<D>& whole_state = whole();
         nlohmann::json j;
+        if (domain_) {
+            // what the processes spent on communication, for benchmarks: seconds in
+            // MPI calls (waiting for the others included), bytes sent, ghosts held
+            const double steps = std::max(1.0, static_cast<double>(state_.step - step_start_));
+            double per_process[3] = {o_.comm->seconds(), o_.comm->bytes_sent(),
+                                     static_cast<double>(state_.ghosts)};
+            double total[3] = {per_process[0], per_process[1], per_process[2]};
+            o_.comm->sum(total);
+            o_.comm->max(per_process);
+            j["mpi"] = {{"processes", o_.comm->size()},
+                        {"domain_grid", domain_->grid()},
+                        {"communication_seconds_mean", total[0] / o_.comm->size()},
+                        {"communication_seconds_max", per_process[0]},
+                        {"bytes_sent_per_step", total[1] / steps},
+                        {"ghosts", total[2]}};
+        }
+        if (!writer()) return j;
         j["dimension"] = D;
         j["dynamics"] = c_.dynamics;
-        j["particles"] = state_.size();
+        j["particles"] = particles_;
         j["steps"] = state_.step;
         j["time"] = state_.time;
         j["dt"] = c_.dt;
-        j["polar_order"] = polar_order(state_);
-        j["msd"] = mean_squared_displacement(state_, book_.start);
+        j["polar_order"] = polar_order(whole_state);
+        j["msd"] = mean_squared_displacement(whole_state, book_.start);
         j["mean_pressure"] = book_.samples ? book_.sum_pressure / book_.samples : 0.0;
         j["mean_polar_order"] = book_.samples ? book_.sum_polar_order / book_.samples : 0.0;
         j["logged_samples"] = book_.samples;
         if (inertial()) {
-            const SpeciesKinetics k = measure_kinetics(state_.p, state_.box, momentum_);
+            const SpeciesKinetics k = measure_kinetics(whole_state.p, whole_state.box, momentum_);
             j["temperature"] = k.temperature();
             j["mean_temperature"] = book_.samples ? book_.sum_temperature / book_.samples : 0.0;
             j["degrees_of_freedom"] = k.total_freedom;
@@ -175,16 +226,17 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     }
 
     void finish(const nlohmann::json& j) override {
+        if (!writer()) return;
         console_ << fmt::format("pedesis: done at step {} (t = {:.6g}) in {:.3g} s, {:.3g} "
                                 "particle-steps/s, {} list rebuilds\n",
                                 state_.step, state_.time, j["wall_seconds"].template get<double>(),
                                 j["particle_steps_per_second"].template get<double>(),
                                 evolver_->list_builds());
-        console_ << fmt::format("  polar order {:.4f} (run mean {:.4f}), MSD {:.6g}, mean pressure "
-                                "{:.6g}\n",
-                                polar_order(state_), j["mean_polar_order"].template get<double>(),
-                                j["msd"].template get<double>(),
-                                j["mean_pressure"].template get<double>());
+        console_ << fmt::format(
+            "  polar order {:.4f} (run mean {:.4f}), MSD {:.6g}, mean pressure "
+            "{:.6g}\n",
+            j["polar_order"].template get<double>(), j["mean_polar_order"].template get<double>(),
+            j["msd"].template get<double>(), j["mean_pressure"].template get<double>());
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
@@ -213,6 +265,24 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     bool inertial() const { return overdamped_ == nullptr; }
 
+    // Whether this process writes and prints (process 0, or the only one).
+    bool writer() const { return !domain_ || o_.comm->rank() == 0; }
+
+    // The whole state in tag order: this process's own on one process; under a domain
+    // decomposition gathered on process 0 once per state (collective).
+    const SoftState<D>& whole() {
+        if (!domain_) return state_;
+        if (!whole_current_) {
+            domain_->gather(state_, whole_);
+            if (writer() && whole_.size() != particles_)
+                throw std::logic_error(fmt::format("domain decomposition: {} particles of {} "
+                                                   "were gathered",
+                                                   whole_.size(), particles_));
+        }
+        whole_current_ = true;
+        return whole_;
+    }
+
     void progress(double order, double pressure) {
         if (!c_.progress) return;
         const auto now = std::chrono::steady_clock::now();
@@ -227,15 +297,19 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
         return wall > 0 ? static_cast<double>(state_.step - step_start_) *
-                              static_cast<double>(state_.size()) / wall
+                              static_cast<double>(particles_) / wall
                         : 0.0;
     }
 
     const RunConfig c_;
     const RunOptions& o_;
     std::ostream& console_;
-    SoftState<D> state_;
+    SoftState<D> state_; // under a domain decomposition: this process's share and ghosts
     std::unique_ptr<Evolver<D>> evolver_;
+    std::unique_ptr<DomainDecomposition<D>> domain_;
+    SoftState<D> whole_; // gathered, on process 0
+    bool whole_current_ = false;
+    std::size_t particles_ = 0; // in the whole system
     SoftRunBook<D> book_;
     const Integrator<D>* overdamped_ = nullptr;
     std::vector<double> bath_T_; // per species, of the overdamped integrator

@@ -28,7 +28,7 @@ template <int D>
 void evolve_until(SoftState<D>& s, Evolver<D>& evolver, const SoftClock& clock,
                   std::uint64_t until_step,
                   double until_time = std::numeric_limits<double>::infinity()) {
-    while (s.step < until_step && s.time < until_time - 1e-9 * clock.dt && !interrupt_requested()) {
+    while (s.step < until_step && s.time < until_time - 1e-9 * clock.dt && !evolver.interrupted()) {
         evolver.evolve(clock.dt);
         s.time = clock.t0 + static_cast<double>(s.step - clock.step0) * clock.dt;
     }

@@ -69,7 +69,7 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
         const double* kick = c_.kick.data();
         const bool noisy = c_.noisy;
         const std::uint16_t* sp = s.p.species.data();
-        const auto n = static_cast<std::int64_t>(s.size());
+        const auto n = static_cast<std::int64_t>(s.owned());
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
@@ -122,7 +122,7 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
         const double* drift_of = c_.drift.data();
         const double* kick_of = c_.kick.data();
         const std::uint16_t* sp = s.p.species.data();
-        const auto n = static_cast<std::int64_t>(s.size());
+        const auto n = static_cast<std::int64_t>(s.owned());
         const auto step = static_cast<std::uint32_t>(s.step);
         constexpr int B = detail::noise_batch;
         constexpr int per = D == 2 ? 1 : 3; // normals per particle

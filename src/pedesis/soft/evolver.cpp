@@ -1,6 +1,7 @@
 #include "pedesis/soft/evolver.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/soft/spatial_sort.hpp"
 
 #include <algorithm>
@@ -42,8 +43,33 @@ template <int D> void Evolver<D>::make_list() {
     nl_ = std::make_unique<NeighborList<D>>(s_.box, range, skin_);
 }
 
-template <int D> void Evolver<D>::ensure_list() {
+template <int D> double Evolver<D>::interaction_reach() {
     if (!nl_) make_list();
+    return r_list_cut_ + skin_;
+}
+
+template <int D> void Evolver<D>::ensure_list(bool for_totals) {
+    if (!nl_) make_list();
+    if (domain_) {
+        // every process rebuilds when one must: a rebuild moves particles between them
+        const bool rebuild = domain_->any(nl_->needs_rebuild(s_.p.position));
+        if (rebuild) {
+            domain_->redistribute(s_);
+            nl_->build(s_.p.position);
+        } else {
+            domain_->refresh_ghosts(s_);
+        }
+        // A rebuild for the log's totals is counted at the next step, where one process
+        // rebuilds (it builds a separate list for the totals instead), so that the
+        // count is the same.
+        if (for_totals)
+            rebuild_for_totals_ = rebuild_for_totals_ || rebuild;
+        else if (rebuild || rebuild_for_totals_) {
+            ++builds_;
+            rebuild_for_totals_ = false;
+        }
+        return;
+    }
     if (nl_->needs_rebuild(s_.p.position)) {
         nl_->build(s_.p.position);
         ++builds_;
@@ -56,7 +82,8 @@ template <int D> const NeighborList<D>& Evolver<D>::neighbor_list() {
 }
 
 template <int D> std::vector<Vec<D>> Evolver<D>::list_reference() const {
-    return nl_ ? nl_->build_positions() : std::vector<Vec<D>>{};
+    // (a shared run's list holds one process's particles: a restart rebuilds)
+    return nl_ && !domain_ ? nl_->build_positions() : std::vector<Vec<D>>{};
 }
 
 template <int D>
@@ -67,7 +94,7 @@ void Evolver<D>::restore_list(const std::vector<Vec<D>>& reference, std::uint64_
 }
 
 template <int D> void Evolver<D>::wrap_all() {
-    const auto n = static_cast<std::int64_t>(s_.size());
+    const auto n = static_cast<std::int64_t>(s_.owned());
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
         const Vec<D> shift = s_.box.wrap(s_.p.position[i]);
@@ -126,6 +153,10 @@ template <int D> void Evolver<D>::compute_forces() {
 
 template <int D> void Evolver<D>::evolve(double dt) {
     if (!(dt > 0.0 && std::isfinite(dt))) throw InputError("dt must be a positive finite number");
+    if (domain_) {
+        evolve_shared(dt);
+        return;
+    }
     if (!nl_) ensure_list();
     if (sort_interval_ > 0 && s_.step > 0 && s_.step % sort_interval_ == 0) sort_particles();
     if (!forces_current_ && needs_initial_forces()) compute_forces();
@@ -141,9 +172,68 @@ template <int D> void Evolver<D>::evolve(double dt) {
     s_.time += dt;
 }
 
+template <int D> void Evolver<D>::evolve_shared(double dt) {
+    // The serial step, with the points where the processes must agree: an integrator's
+    // error on one process is held until all meet, so that none waits for it forever.
+    auto held = [](std::string& error, auto&& act) {
+        try {
+            act();
+        } catch (const RunError& e) {
+            error = e.what();
+        }
+    };
+    if (!nl_) make_list();
+    if (sort_interval_ > 0 && s_.step > 0 && s_.step % sort_interval_ == 0) {
+        // as sort_particles: a fresh list after the sort, so rebuilds count the same
+        domain_->redistribute(s_, r_list_cut_ + skin_);
+        nl_->build(s_.p.position);
+        ++builds_;
+    }
+    if (!forces_current_ && needs_initial_forces()) compute_forces();
+    const double max_move = skin_ > 0.0 ? skin_ : r_list_cut_;
+    std::string error;
+    held(error, [&] {
+        for (auto& i : integrators_) i->prestep(s_, dt, max_move);
+    });
+    agree(error, false);
+    compute_forces();
+    held(error, [&] {
+        for (auto& i : integrators_) i->poststep(s_, dt, max_move);
+    });
+    wrap_all();
+    ++s_.step;
+    s_.time += dt;
+    interrupted_ = agree(error, interrupt_requested());
+}
+
+template <int D> bool Evolver<D>::agree(const std::string& error, bool stop) {
+    Communicator& comm = domain_->comm();
+    // [the lowest process with an error, counted from the top (0: none), stop]
+    double flags[2] = {error.empty() ? 0.0 : static_cast<double>(comm.size() - comm.rank()),
+                       stop ? 1.0 : 0.0};
+    comm.max(flags);
+    if (flags[0] > 0.0) {
+        const int from = comm.size() - static_cast<int>(flags[0]);
+        throw RunError(comm.broadcast(error, from));
+    }
+    return flags[1] > 0.0;
+}
+
+template <int D> bool Evolver<D>::interrupted() const {
+    return domain_ ? interrupted_ : interrupt_requested();
+}
+
 template <int D> PairTotals Evolver<D>::pair_totals() {
     if (!nl_) ensure_list();
     PairTotals t;
+    if (domain_) {
+        // the ghosts must be where their owners are (and a rebuild here is shared)
+        ensure_list(true);
+        for (const auto& f : forces_) f->add_totals(s_, *nl_, t);
+        double sums[2] = {t.energy, t.virial};
+        domain_->comm().sum(sums);
+        return {sums[0], sums[1]};
+    }
     if (!nl_->needs_rebuild(s_.p.position)) {
         for (const auto& f : forces_) f->add_totals(s_, *nl_, t);
         return t;

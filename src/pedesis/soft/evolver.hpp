@@ -3,6 +3,7 @@
 // and advances the state one step at a time:
 //   neighbour-list check, integrator pre-steps, forces and torques (reset, then every
 //   term), integrator post-steps, periodic wrap with image counters.
+#include "pedesis/soft/domain_decomposition.hpp"
 #include "pedesis/soft/plugins.hpp"
 
 #include <memory>
@@ -21,6 +22,21 @@ template <int D> class Evolver {
     void add_integrator(std::unique_ptr<Integrator<D>> i);
 
     void evolve(double dt);
+
+    // Shares the run with other processes (soft/domain_decomposition.hpp): the state
+    // holds this process's particles and ghosts, every step exchanges ghosts, and a list
+    // rebuild (decided together) redistributes the particles. Every call that steps,
+    // computes forces or totals is then collective, and an error on one process (a
+    // blow-up) is thrown on all, with its message. The decomposition must outlive the
+    // evolver. The periodic sort then sorts each process's particles, at a shared
+    // redistribution.
+    void set_domain(DomainDecomposition<D>* domain) { domain_ = domain; }
+    // Whether a caught signal (core/interrupt.hpp) asks the run to stop: under a domain
+    // decomposition, whether one reached any process by the end of the last step, so
+    // that all stop at the same step.
+    bool interrupted() const;
+    // The list's cutoff plus skin, from the registered terms (what ghosts must cover).
+    double interaction_reach();
     void run(std::uint64_t steps, double dt) {
         for (std::uint64_t k = 0; k < steps; ++k) evolve(dt);
     }
@@ -67,7 +83,12 @@ template <int D> class Evolver {
     const std::vector<std::unique_ptr<Integrator<D>>>& integrators() const { return integrators_; }
 
   private:
-    void ensure_list();
+    // for_totals: called for the log's totals (under a domain decomposition, see there)
+    void ensure_list(bool for_totals = false);
+    void evolve_shared(double dt);
+    // Under a domain decomposition: throws on every process the error one of them met
+    // (`error` non-empty), else returns whether any asks to stop (`stop`).
+    bool agree(const std::string& error, bool stop);
     void make_list();
     void wrap_all();
     void sort_particles();
@@ -80,6 +101,9 @@ template <int D> class Evolver {
     std::uint64_t builds_ = 0;
     std::uint64_t sort_interval_ = 0;
     bool forces_current_ = false;
+    DomainDecomposition<D>* domain_ = nullptr;
+    bool interrupted_ = false; // collective, under a domain decomposition
+    bool rebuild_for_totals_ = false;
     std::vector<std::unique_ptr<ForceTerm<D>>> forces_;
     std::vector<std::unique_ptr<TorqueTerm<D>>> torques_;
     std::vector<std::unique_ptr<Integrator<D>>> integrators_;

@@ -95,7 +95,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         const Vec<D>* force = s.force.data();
         Vec<D>* pos = s.p.position.data();
         Vec<D>* vel = s.p.velocity.data();
-        const auto n = static_cast<std::int64_t>(s.size());
+        const auto n = static_cast<std::int64_t>(s.owned());
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
         // The move of the lowest bad index is kept for the message: after the O step the
@@ -145,7 +145,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         const std::uint16_t* sp = s.p.species.data();
         const Vec<D>* force = s.force.data();
         Vec<D>* vel = s.p.velocity.data();
-        const auto n = static_cast<std::int64_t>(s.size());
+        const auto n = static_cast<std::int64_t>(s.owned());
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i) vel[i] += kick[sp[i]] * force[i];
     }

@@ -63,15 +63,21 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
     void add_totals(const SoftState<D>& s, const NeighborList<D>& nl,
                     PairTotals& t) const override {
         check_species(s.p.species_table.size());
+        // Under domain decomposition a pair counts for its owned particles: whole between
+        // two, half with a ghost (the other half is its owner's), not at all between two
+        // ghosts. On one process every weight is exactly 1.
+        const std::size_t owned = s.owned();
         for (std::size_t i = 0; i < s.size(); ++i) {
             for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it) {
+                const double weight = 0.5 * static_cast<double>((i < owned) + (*it < owned));
+                if (weight == 0.0) continue;
                 const Vec<D> d = s.box.minimum_image(s.p.position[i] - s.p.position[*it]);
                 const double r2 = norm2(d);
                 double f_over_r, energy;
                 const Pair& pair = pairs_[index(s.p.species[i], s.p.species[*it])];
                 if (pair.eval(r2, s.p.radius(i) + s.p.radius(*it), f_over_r, energy)) {
-                    t.energy += energy;
-                    t.virial += f_over_r * r2;
+                    t.energy += weight * energy;
+                    t.virial += weight * (f_over_r * r2);
                 }
             }
         }

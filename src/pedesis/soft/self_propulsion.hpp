@@ -41,7 +41,7 @@ template <int D> class SelfPropulsion final : public ForceTerm<D> {
         alpha_.tabulate(s.p.species_table.size(), table_, [](double a) { return a; });
         const double* alpha = table_.data();
         const std::uint16_t* sp = s.p.species.data();
-        const auto n = static_cast<std::int64_t>(s.size());
+        const auto n = static_cast<std::int64_t>(s.owned());
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i) s.force[i] += alpha[sp[i]] * s.director[i];
     }

@@ -25,8 +25,14 @@ template <int D> struct SoftState {
     std::vector<std::array<std::int32_t, D>> image;
     std::uint64_t step = 0;
     double time = 0.0;
+    // Under domain decomposition (soft/domain_decomposition.hpp) the last `ghosts`
+    // particles are copies of other processes' particles within interaction range: they
+    // enter neighbour lists and pair sums but are not integrated. 0 on one process.
+    std::size_t ghosts = 0;
 
     std::size_t size() const { return p.size(); }
+    // The particles this process integrates: indices [0, owned()).
+    std::size_t owned() const { return p.size() - ghosts; }
 
     void resize(std::size_t n) {
         p.resize(n);

@@ -28,7 +28,7 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         const Vec<D>* force = s.force.data();
         Vec<D>* pos = s.p.position.data();
         Vec<D>* vel = s.p.velocity.data();
-        const auto n = static_cast<std::int64_t>(s.size());
+        const auto n = static_cast<std::int64_t>(s.owned());
         const double max2 = max_move * max_move;
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
 #pragma omp parallel for schedule(static) reduction(min : bad)
@@ -50,7 +50,7 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         const std::uint16_t* sp = s.p.species.data();
         const Vec<D>* force = s.force.data();
         Vec<D>* vel = s.p.velocity.data();
-        const auto n = static_cast<std::int64_t>(s.size());
+        const auto n = static_cast<std::int64_t>(s.owned());
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i) vel[i] += kick[sp[i]] * force[i];
     }

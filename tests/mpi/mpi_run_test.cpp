@@ -1,0 +1,220 @@
+// `pedesis run` of the soft engine divided among 2 and 3 MPI processes (domain
+// decomposition, soft/domain_decomposition.hpp) against the same run on one process.
+//
+// The bound for positions: each process sums the forces on its particles over its own
+// half list, in another order than one process does, so a force differs by a few units
+// in the last place (~1e-16 relative) at each step. The noise is keyed by tag and step,
+// so it is the same on every process. Over the few hundred steps below, measured
+// differences are 1e-14 to 1e-12 sigma (overdamped ABP, which damps them); 1e-9 sigma
+// leaves three orders of magnitude for other machines and compilers, and is still ten
+// million times smaller than one step's displacement (~1e-2 sigma), so a particle that
+// was lost, duplicated, given another's noise or a missing neighbour's force fails it.
+#include "mpi/mpi_support.hpp"
+
+#include "pedesis/io/xyz_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numeric>
+
+namespace pedesis::test {
+namespace {
+
+constexpr double position_bound = 1e-9;
+
+// The tutorial's ABP system (harmonic repulsion, self-propulsion, polar alignment,
+// translational and rotational noise), small and at a density where every particle has
+// neighbours.
+std::string abp_config(int dimension, int steps, double alpha = 1.0, int count = 400) {
+    const double length = dimension == 2 ? 24.0 : 9.0;
+    return fmt::format("dimension = {}\ndynamics = \"brownian\"\nseed = 7\n[box]\nlength = {}\n"
+                       "[[species]]\nname = \"A\"\ncount = {}\nradius = 0.5\n"
+                       "[initial]\npositions = \"random\"\nmin_distance = 0.8\n"
+                       "[[force]]\nname = \"harmonic\"\nk = 50.0\n"
+                       "[[force]]\nname = \"self_propulsion\"\nalpha = {}\n"
+                       "[[torque]]\nname = \"polar_align\"\nJ = 0.5\na = 1.5\n"
+                       "[[integrator]]\nname = \"brownian\"\nT = 0.05\ngamma = 1.0\n"
+                       "[[integrator]]\nname = \"brownian_rotation\"\nT = 0.1\ngamma = 1.0\n"
+                       "[neighbor_list]\nskin = 0.4\n"
+                       "[run]\ndt = 0.002\nsteps = {}\n"
+                       "[output]\nlog_every = 50\nsnapshot_every = 100\ncheckpoint_every = 100\n"
+                       "formats = [\"xyz\"]\nprogress = false\n",
+                       dimension, length, count, alpha, steps);
+}
+
+// The largest distance between the same particle in the last frames of two runs.
+double largest_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
+    const XyzReader ra(a), rb(b);
+    EXPECT_EQ(ra.frames(), rb.frames());
+    double worst = 0.0;
+    for (std::size_t k = 0; k < std::min(ra.frames(), rb.frames()); ++k) {
+        const XyzFrame fa = ra.frame(k), fb = rb.frame(k);
+        EXPECT_EQ(fa.size(), fb.size());
+        for (std::size_t i = 0; i < std::min(fa.size(), fb.size()); ++i)
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(fa.position[i][c] - fb.position[i][c]));
+    }
+    return worst;
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
+class MpiRun : public ScratchDir {
+  protected:
+    void expect_processes_follow_serial(int dimension);
+};
+
+void MpiRun::expect_processes_follow_serial(int dimension) {
+    MpiRun& t = *this;
+    t.write("abp.toml", abp_config(dimension, 400));
+    const CliResult serial = run_pedesis("run abp.toml --out serial", t.dir, 120);
+    ASSERT_EQ(serial.exit_code, 0) << serial.output;
+    for (int p : {2, 3}) {
+        const std::string out = "np" + std::to_string(p);
+        const CliResult r = run_mpi(p, "run abp.toml --out " + out, t.dir);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_NE(r.output.find(std::to_string(p) + " MPI processes, domains"), std::string::npos)
+            << r.output;
+        // one process talks
+        EXPECT_EQ(occurrences(r.output, "pedesis: done"), 1u) << r.output;
+        const double d =
+            largest_difference(t.dir / "serial/trajectory.xyz", t.dir / (out + "/trajectory.xyz"));
+        EXPECT_LT(d, position_bound) << p << " processes, " << dimension << "D";
+        // the log has the serial rows and columns; its values agree to far better than
+        // its 10 digits would show a lost particle (the list rebuilds are shared)
+        const CsvColumns s = csv_columns(t.read("serial/log.csv"));
+        const CsvColumns m = csv_columns(t.read(out + "/log.csv"));
+        ASSERT_EQ(s.names, m.names);
+        for (const std::string& name : s.names) {
+            ASSERT_EQ(s.cells.at(name).size(), m.cells.at(name).size());
+            for (std::size_t k = 0; k < s.cells.at(name).size(); ++k) {
+                const double a = std::stod(s.cells.at(name)[k]), b = std::stod(m.cells.at(name)[k]);
+                EXPECT_NEAR(a, b, 1e-8 * std::max(1.0, std::abs(a))) << name << " row " << k;
+            }
+        }
+    }
+}
+
+TEST_F(MpiRun, TwoAndThreeProcessesFollowTheSerialTrajectoryIn2D) {
+    expect_processes_follow_serial(2);
+}
+
+TEST_F(MpiRun, TwoAndThreeProcessesFollowTheSerialTrajectoryIn3D) {
+    expect_processes_follow_serial(3);
+}
+
+// Fast swimmers (v0 = 20: 0.04 sigma per step, a domain of 8 sigma in 200 steps) cross
+// the boundaries between three domains again and again; none is lost or doubled.
+TEST_F(MpiRun, SwimmersThatCrossDomainsAgainAndAgainStayOnTheSerialTrajectory) {
+    write("fast.toml", abp_config(2, 600, 20.0, 150));
+    const CliResult serial = run_pedesis("run fast.toml --out serial", dir, 120);
+    ASSERT_EQ(serial.exit_code, 0) << serial.output;
+    const CliResult r = run_mpi(3, "run fast.toml --out np3", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_LT(largest_difference(dir / "serial/trajectory.xyz", dir / "np3/trajectory.xyz"),
+              position_bound);
+    // the particles did cross: a mean squared displacement of many domain widths
+    const CsvColumns log = csv_columns(read("np3/log.csv"));
+    EXPECT_GT(std::stod(log.cells.at("msd").back()), 8.0 * 8.0);
+}
+
+// A checkpoint written by 2 processes continues on 1 and on 3, and both continuations
+// follow the uninterrupted serial run (to the bound: the restart rebuilds its lists).
+TEST_F(MpiRun, ACheckpointOfTwoProcessesRestartsOnOneAndOnThree) {
+    write("first.toml", abp_config(2, 200));
+    write("whole.toml", abp_config(2, 400));
+    const CliResult whole = run_pedesis("run whole.toml --out whole", dir, 120);
+    ASSERT_EQ(whole.exit_code, 0) << whole.output;
+    const CliResult first = run_mpi(2, "run first.toml --out first", dir);
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    const CliResult one =
+        run_pedesis("run whole.toml --out one --restart first/checkpoint.bin", dir, 120);
+    ASSERT_EQ(one.exit_code, 0) << one.output;
+    const CliResult three =
+        run_mpi(3, "run whole.toml --out three --restart first/checkpoint.bin", dir);
+    ASSERT_EQ(three.exit_code, 0) << three.output;
+    // the continuations hold frames 3 and 4 (steps 300 and 400); the whole run 0..4
+    const XyzReader w(dir / "whole/trajectory.xyz"), a(dir / "one/trajectory.xyz"),
+        b(dir / "three/trajectory.xyz");
+    ASSERT_EQ(a.frames(), 2u);
+    ASSERT_EQ(b.frames(), 2u);
+    const XyzFrame fw = w.frame(w.frames() - 1), fa = a.frame(1), fb = b.frame(1);
+    ASSERT_EQ(fa.size(), fw.size());
+    ASSERT_EQ(fb.size(), fw.size());
+    for (std::size_t i = 0; i < fw.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(fa.position[i][c], fw.position[i][c], position_bound) << i;
+            EXPECT_NEAR(fb.position[i][c], fw.position[i][c], position_bound) << i;
+        }
+    EXPECT_EQ(csv_columns(read("three/log.csv")).cells.at("step").back(), "400");
+}
+
+// Three domains of a box 4 sigma wide would be 1.33 sigma thin, less than the cutoff
+// plus skin (1.4): refused before anything is written, once, exit 2 on every process.
+TEST_F(MpiRun, ADomainThinnerThanTheInteractionRangeIsRefusedOnce) {
+    std::string config = abp_config(2, 10, 1.0, 4);
+    config.replace(config.find("length = 24"), 11, "length = 4");
+    write("thin.toml", config);
+    const CliResult r = run_mpi(3, "run thin.toml --out thin", dir);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(occurrences(r.output, "pedesis: error:"), 1u) << r.output;
+    EXPECT_NE(r.output.find("thinner than the interaction range"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "thin"));
+}
+
+// The error paths leave no process waiting for another (run_mpi's kill timer would
+// turn a deadlock into exit 137): each ends every process with the serial exit code and
+// one message.
+TEST_F(MpiRun, BadConfigGivesOneMessageAndExitTwo) {
+    std::string config = abp_config(2, 10);
+    config.replace(config.find("polar_align"), 11, "polar_aline");
+    write("bad.toml", config);
+    const CliResult r = run_mpi(3, "run bad.toml --out bad", dir, 120);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(occurrences(r.output, "pedesis: error:"), 1u) << r.output;
+    EXPECT_NE(r.output.find("polar_aline"), std::string::npos) << r.output;
+}
+
+// Only process 0 writes: when it cannot (the run directory is a file), the others must
+// not go on to wait for it.
+TEST_F(MpiRun, AnUnwritableRunDirectoryStopsEveryProcess) {
+    write("abp.toml", abp_config(2, 100));
+    write("taken", "a file where the run directory should be\n");
+    const CliResult r = run_mpi(2, "run abp.toml --out taken", dir, 120);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(occurrences(r.output, "pedesis: error:"), 1u) << r.output;
+    EXPECT_EQ(read("taken"), "a file where the run directory should be\n");
+}
+
+// Two particles placed almost on top of each other in the domain of process 1 (x > 0 of
+// a 2 x 1 grid) blow up at the first step there; every process stops with exit 3, the
+// message of process 1 is printed once (by process 0), and the run directory keeps its
+// last good frame.
+TEST_F(MpiRun, ABlowUpOnOneProcessStopsAllWithItsMessage) {
+    write("blow.toml", "dimension = 2\ndynamics = \"brownian\"\nseed = 2\n[box]\nlength = 24.0\n"
+                       "[[species]]\nname = \"A\"\ncount = 40\nradius = 0.5\n"
+                       "[[species]]\nname = \"B\"\nposition = [6.0, 1.0]\nradius = 0.5\n"
+                       "[[species]]\nname = \"C\"\nposition = [6.05, 1.0]\nradius = 0.5\n"
+                       "[initial]\npositions = \"random\"\nmin_distance = 1.2\n"
+                       "[[force]]\nname = \"harmonic\"\nk = 2000.0\n"
+                       "[[integrator]]\nname = \"brownian\"\nT = 0.0\ngamma = 1.0\n"
+                       "[run]\ndt = 0.01\nsteps = 100\n"
+                       "[output]\nlog_every = 10\nsnapshot_every = 10\nformats = [\"xyz\"]\n"
+                       "progress = false\n");
+    const CliResult r = run_mpi(2, "run blow.toml --out blow", dir, 120);
+    EXPECT_EQ(r.exit_code, 3) << r.output;
+    EXPECT_EQ(occurrences(r.output, "pedesis: run stopped:"), 1u) << r.output;
+    EXPECT_NE(r.output.find("more than 0.5 (the neighbour-list skin)"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("the last good snapshot is frame 0"), std::string::npos) << r.output;
+    const XyzReader frames(dir / "blow/trajectory.xyz");
+    EXPECT_EQ(frames.frames(), 1u);
+}
+
+} // namespace
+} // namespace pedesis::test
