@@ -108,6 +108,24 @@ TEST_F(MpiRun, TwoAndThreeProcessesFollowTheSerialTrajectoryIn3D) {
     expect_processes_follow_serial(3);
 }
 
+// Threads and processes combine: 2 processes of 2 OpenMP threads each give the
+// trajectory of 2 processes of one thread bit for bit (each process's force sums are in
+// an order that does not depend on its threads). Passive waiting keeps the 4 threads on
+// 2 cores from spinning against each other.
+TEST_F(MpiRun, ThreadsInsideProcessesChangeNoBit) {
+    write("abp.toml", abp_config(2, 300));
+    const CliResult one = run_mpi(2, "run abp.toml --out one_thread --threads 1", dir);
+    ASSERT_EQ(one.exit_code, 0) << one.output;
+    const CliResult two =
+        shell("OMP_WAIT_POLICY=passive timeout -s KILL 300 '" + std::string(PEDESIS_MPIEXEC) +
+                  "' --allow-run-as-root --oversubscribe -np 2 '" + PEDESIS_BINARY +
+                  "' run abp.toml --out two_threads --threads 2",
+              dir);
+    ASSERT_EQ(two.exit_code, 0) << two.output;
+    EXPECT_EQ(read("two_threads/trajectory.xyz"), read("one_thread/trajectory.xyz"));
+    EXPECT_EQ(read("two_threads/log.csv"), read("one_thread/log.csv"));
+}
+
 // Inertial dynamics: the Kob-Andersen Lennard-Jones mixture (3D, two species, pair
 // parameters per species pair) under Langevin and NVE velocity Verlet, whose forces of
 // the step before travel with a migrating particle. A dense LJ liquid amplifies round-off
