@@ -81,6 +81,37 @@ class MpiCommunicator final : public Communicator {
         return in;
     }
 
+    std::vector<double> exchange_with(const std::vector<int>& partners,
+                                      const std::vector<std::vector<double>>& send,
+                                      std::vector<std::size_t>& counts) override {
+        const Timed timed(seconds_);
+        const std::size_t k = partners.size();
+        // the counts first (one number each way), then the numbers themselves
+        std::vector<unsigned long long> out(k), in(k);
+        std::vector<MPI_Request> requests(2 * k);
+        for (std::size_t q = 0; q < k; ++q) {
+            out[q] = send[q].size();
+            MPI_Irecv(&in[q], 1, MPI_UNSIGNED_LONG_LONG, partners[q], 0, MPI_COMM_WORLD,
+                      &requests[q]);
+            MPI_Isend(&out[q], 1, MPI_UNSIGNED_LONG_LONG, partners[q], 0, MPI_COMM_WORLD,
+                      &requests[k + q]);
+        }
+        MPI_Waitall(static_cast<int>(2 * k), requests.data(), MPI_STATUSES_IGNORE);
+        counts.assign(in.begin(), in.end());
+        std::vector<double> received(std::accumulate(counts.begin(), counts.end(), std::size_t{0}));
+        std::size_t at = 0;
+        for (std::size_t q = 0; q < k; ++q) {
+            MPI_Irecv(received.data() + at, mpi_count(counts[q]), MPI_DOUBLE, partners[q], 1,
+                      MPI_COMM_WORLD, &requests[q]);
+            MPI_Isend(send[q].data(), mpi_count(send[q].size()), MPI_DOUBLE, partners[q], 1,
+                      MPI_COMM_WORLD, &requests[k + q]);
+            at += counts[q];
+            bytes_ += 8.0 * static_cast<double>(send[q].size());
+        }
+        MPI_Waitall(static_cast<int>(2 * k), requests.data(), MPI_STATUSES_IGNORE);
+        return received;
+    }
+
     std::vector<double> gather(const std::vector<double>& send) override {
         const Timed timed(seconds_);
         int n = mpi_count(send.size());

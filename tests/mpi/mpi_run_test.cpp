@@ -213,15 +213,17 @@ TEST_F(MpiRun, LongRunAveragesAgreeWithinTheirErrors) {
 }
 
 // Fast swimmers (v0 = 20: 0.04 sigma per step, a domain of 8 sigma in 200 steps) cross
-// the boundaries between three domains again and again; none is lost or doubled.
+// the boundaries between three domains again and again; none is lost or doubled. Hard,
+// fast collisions amplify the rounding differences more than the slow system does
+// (measured 6e-9 sigma after 600 steps, 8e-8 after 1200): the bound is 1e-6 sigma, still
+// 40,000 times smaller than one step's move.
 TEST_F(MpiRun, SwimmersThatCrossDomainsAgainAndAgainStayOnTheSerialTrajectory) {
     write("fast.toml", abp_config(2, 600, 20.0, 150));
     const CliResult serial = run_pedesis("run fast.toml --out serial", dir, 120);
     ASSERT_EQ(serial.exit_code, 0) << serial.output;
     const CliResult r = run_mpi(3, "run fast.toml --out np3", dir);
     ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_LT(largest_difference(dir / "serial/trajectory.xyz", dir / "np3/trajectory.xyz"),
-              position_bound);
+    EXPECT_LT(largest_difference(dir / "serial/trajectory.xyz", dir / "np3/trajectory.xyz"), 1e-6);
     // the particles did cross: a mean squared displacement of many domain widths
     const CsvColumns log = csv_columns(read("np3/log.csv"));
     EXPECT_GT(std::stod(log.cells.at("msd").back()), 8.0 * 8.0);

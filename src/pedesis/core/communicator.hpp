@@ -28,6 +28,12 @@ class Communicator {
     // process sent to this one, concatenated in rank order, and each one's count.
     virtual std::vector<double> exchange(const std::vector<std::vector<double>>& send,
                                          std::vector<std::size_t>& counts) = 0;
+    // The same among partners only: send[k] goes to partners[k], and what partners[k]
+    // sent comes back in that order. Point to point, so it costs O(partners), not O(P):
+    // every process must name as partners exactly those that name it.
+    virtual std::vector<double> exchange_with(const std::vector<int>& partners,
+                                              const std::vector<std::vector<double>>& send,
+                                              std::vector<std::size_t>& counts) = 0;
     // Every process's `send`, concatenated in rank order, on process 0 (empty elsewhere).
     virtual std::vector<double> gather(const std::vector<double>& send) = 0;
     // Process `root`'s values, on every process (resized to root's length).

@@ -63,6 +63,14 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         read_observable_parameters(table);
         particles_ = state_.size();
         if (o_.comm && o_.comm->size() > 1) {
+            // what measured_shared needs of the whole system, which does not change
+            conserved_ = conserved_momentum_axes(state_.p, state_.box, momentum_);
+            for (std::size_t i = 0; i < state_.size() && !inertial(); ++i)
+                ideal_overdamped_ += bath_T_[state_.p.species[i]] / state_.box.volume();
+            swim_alpha_.assign(table.size(), 0.0);
+            for (std::size_t sp = 0; sp < table.size(); ++sp)
+                for (const auto& f : evolver_->forces())
+                    swim_alpha_[sp] += f->swim_force(sp, table.size());
             // every process built or loaded the whole state, and keeps its domain's share
             const double reach = evolver_->interaction_reach();
             domain_ = std::make_unique<DomainDecomposition<D>>(*o_.comm, state_.box, reach);
@@ -88,8 +96,18 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     Advance advance(std::uint64_t until_step, double until_time) override {
         whole_current_ = false;
+        // the stepping alone (no output), and its share of communication: benchmarks
+        const auto begin = std::chrono::steady_clock::now();
+        const double comm_begin = o_.comm ? o_.comm->seconds() : 0.0;
+        const double bytes_begin = o_.comm ? o_.comm->bytes_sent() : 0.0;
         evolve_until(state_, *evolver_, SoftClock{time_start_, step_start_, c_.dt},
                      std::min<std::uint64_t>(until_step, c_.steps), until_time);
+        stepping_.seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+        if (o_.comm) {
+            stepping_.communication_seconds += o_.comm->seconds() - comm_begin;
+            stepping_.bytes_sent += o_.comm->bytes_sent() - bytes_begin;
+        }
         return {state_.step >= c_.steps ? "steps" : nullptr, false};
     }
 
@@ -114,50 +132,23 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     void measure(std::vector<double>& values) override {
         const PairTotals pair = evolver_->pair_totals(); // (collective under a decomposition)
-        const auto& s = whole();
-        if (!writer()) {
-            // process 0's row, so that every process sees the same (a NaN stops all)
-            std::vector<double> row;
-            o_.comm->broadcast(row, 0);
-            values.insert(values.end(), row.begin(), row.end());
-            return;
-        }
-        const std::size_t first = values.size();
-        const double V = s.box.volume();
-        double ideal = 0.0;
-        SpeciesKinetics k;
-        if (inertial()) {
-            // the kinetic part of P V is 2 K / d in the centre-of-mass frame, f T / d
-            k = measure_kinetics(s.p, s.box, momentum_);
-            ideal = 2.0 * k.total_thermal / (D * V);
-        } else {
-            for (std::size_t i = 0; i < s.size(); ++i) ideal += bath_T_[s.p.species[i]];
-            ideal /= V;
-        }
+        const Measured m = domain_ ? measured_shared() : measured_here();
+        const double V = state_.box.volume();
         const double virial = pair.virial / (D * V);
-        double active = 0.0;
-        for (const auto& f : evolver_->forces()) active += f->swim_pressure(s, book_.start);
-        const double pressure = ideal + virial + active;
-        const double order = polar_order(s);
-        values.insert(values.end(), {static_cast<double>(s.step), s.time, order,
-                                     mean_squared_displacement(s, book_.start), pair.energy});
+        const double pressure = m.ideal + virial + m.active;
+        values.insert(values.end(),
+                      {static_cast<double>(state_.step), state_.time, m.order, m.msd, pair.energy});
         if (inertial())
-            values.insert(values.end(),
-                          {k.total_kinetic, k.temperature(), pair.energy + k.total_kinetic});
-        values.insert(values.end(), {pressure, ideal, virial, active,
+            values.insert(values.end(), {m.kinetic, m.temperature, pair.energy + m.kinetic});
+        values.insert(values.end(), {pressure, m.ideal, virial, m.active,
                                      static_cast<double>(evolver_->list_builds())});
-        if (s.step > 0) {
+        if (state_.step > 0) {
             ++book_.samples;
             book_.sum_pressure += pressure;
-            book_.sum_polar_order += order;
-            book_.sum_temperature += k.temperature();
+            book_.sum_polar_order += m.order;
+            book_.sum_temperature += m.temperature;
         }
-        progress(order, pressure);
-        if (domain_) {
-            std::vector<double> row(values.begin() + static_cast<std::ptrdiff_t>(first),
-                                    values.end());
-            o_.comm->broadcast(row, 0);
-        }
+        progress(m.order, pressure);
     }
 
     void start(bool fresh) override {
@@ -185,20 +176,22 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         const SoftState<D>& whole_state = whole();
         nlohmann::json j;
         if (domain_) {
-            // what the processes spent on communication, for benchmarks: seconds in
-            // MPI calls (waiting for the others included), bytes sent, ghosts held
+            // for benchmarks, over the steps (outputs excluded): seconds, seconds in MPI
+            // calls (waiting for the others included) and bytes sent, with the ghosts held
             const double steps = std::max(1.0, static_cast<double>(state_.step - step_start_));
-            double per_process[3] = {o_.comm->seconds(), o_.comm->bytes_sent(),
-                                     static_cast<double>(state_.ghosts)};
-            double total[3] = {per_process[0], per_process[1], per_process[2]};
+            double per_process[4] = {stepping_.seconds, stepping_.communication_seconds,
+                                     stepping_.bytes_sent, static_cast<double>(state_.ghosts)};
+            double total[4] = {per_process[0], per_process[1], per_process[2], per_process[3]};
             o_.comm->sum(total);
             o_.comm->max(per_process);
+            const double p = o_.comm->size();
             j["mpi"] = {{"processes", o_.comm->size()},
                         {"domain_grid", domain_->grid()},
-                        {"communication_seconds_mean", total[0] / o_.comm->size()},
-                        {"communication_seconds_max", per_process[0]},
-                        {"bytes_sent_per_step", total[1] / steps},
-                        {"ghosts", total[2]}};
+                        {"stepping_seconds_max", per_process[0]},
+                        {"communication_seconds_mean", total[1] / p},
+                        {"communication_seconds_max", per_process[1]},
+                        {"bytes_sent_per_step", total[2] / steps},
+                        {"ghosts", total[3]}};
         }
         if (!writer()) return j;
         j["dimension"] = D;
@@ -222,6 +215,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         j["frames"] = book_.frames;
         j["wall_seconds"] = wall;
         j["particle_steps_per_second"] = rate();
+        j["stepping_seconds"] = stepping_.seconds;
         return j;
     }
 
@@ -243,6 +237,64 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     OutputChoice outputs() const { return {c_.formats, c_.log_quantities}; }
 
   private:
+    // The log's one-body quantities at this instant.
+    struct Measured {
+        double order = 0.0, msd = 0.0, kinetic = 0.0, temperature = 0.0, ideal = 0.0, active = 0.0;
+    };
+
+    // From the whole state, on one process.
+    Measured measured_here() const {
+        const auto& s = state_;
+        const double V = s.box.volume();
+        Measured m;
+        if (inertial()) {
+            // the kinetic part of P V is 2 K / d in the centre-of-mass frame, f T / d
+            const SpeciesKinetics k = measure_kinetics(s.p, s.box, momentum_);
+            m.ideal = 2.0 * k.total_thermal / (D * V);
+            m.kinetic = k.total_kinetic;
+            m.temperature = k.temperature();
+        } else {
+            for (std::size_t i = 0; i < s.size(); ++i) m.ideal += bath_T_[s.p.species[i]];
+            m.ideal /= V;
+        }
+        for (const auto& f : evolver_->forces()) m.active += f->swim_pressure(s, book_.start);
+        m.order = polar_order(s);
+        m.msd = mean_squared_displacement(s, book_.start);
+        return m;
+    }
+
+    // The same from the sums of every process's particles (collective): the formulas of
+    // measured_here, rearranged so that each is a function of sums (SoftLogSums).
+    Measured measured_shared() const {
+        const SoftLogSums<D> mine = soft_log_sums(state_, book_.start, swim_alpha_);
+        auto flat = mine.flat();
+        o_.comm->sum(flat);
+        const SoftLogSums<D> t = SoftLogSums<D>::from_flat(flat);
+        const double V = state_.box.volume(), n = t.particles;
+        Measured m;
+        m.order = norm(t.director) / n;
+        m.msd = t.squared_displacement / n;
+        // sum alpha n . (dr - drift), with drift the mean displacement
+        m.active = (t.swim - dot(t.displacement * (1.0 / n), t.swim_direction)) / (D * V);
+        if (inertial()) {
+            // sum m (v - V)^2 / 2 along the conserved axes is sum m v^2 / 2 - P^2 / 2M
+            double thermal = t.kinetic;
+            int conserved = 0;
+            for (int a = 0; a < D; ++a)
+                if (conserved_[a]) {
+                    ++conserved;
+                    if (t.mass > 0.0) thermal -= 0.5 * t.momentum[a] * t.momentum[a] / t.mass;
+                }
+            const double freedom = t.mobile > 0.0 ? D * t.mobile - conserved : 0.0;
+            m.kinetic = t.kinetic;
+            m.temperature = freedom > 0.0 ? 2.0 * thermal / freedom : 0.0;
+            m.ideal = 2.0 * thermal / (D * V);
+        } else {
+            m.ideal = ideal_overdamped_;
+        }
+        return m;
+    }
+
     // The plug-ins say what the logs need: an overdamped position integrator (its bath
     // temperature gives the ideal-gas pressure) and the forces' swim pressure.
     void read_observable_parameters(const std::vector<Species>& table) {
@@ -310,6 +362,14 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     SoftState<D> whole_; // gathered, on process 0
     bool whole_current_ = false;
     std::size_t particles_ = 0; // in the whole system
+    // for measured_shared: the axes of conserved momentum, the ideal pressure of an
+    // overdamped run, and each species's active force
+    std::array<bool, D> conserved_{};
+    double ideal_overdamped_ = 0.0;
+    std::vector<double> swim_alpha_;
+    struct {
+        double seconds = 0.0, communication_seconds = 0.0, bytes_sent = 0.0;
+    } stepping_; // by this invocation
     SoftRunBook<D> book_;
     const Integrator<D>* overdamped_ = nullptr;
     std::vector<double> bath_T_; // per species, of the overdamped integrator

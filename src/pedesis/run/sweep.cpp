@@ -276,7 +276,10 @@ void flatten(const nlohmann::json& j, const std::string& prefix,
              std::map<std::string, std::string>& out) {
     for (const auto& [k, v] : j.items()) {
         const std::string key = prefix.empty() ? k : prefix + "." + k;
-        if (key == "wall_seconds" || key == "particle_steps_per_second") continue; // timing
+        // timings differ from run to run: the table holds what a rerun reproduces
+        if (key == "wall_seconds" || key == "particle_steps_per_second" ||
+            key == "stepping_seconds" || key == "mpi")
+            continue;
         if (v.is_object())
             flatten(v, key, out);
         else if (v.is_number() || v.is_boolean() || v.is_null())

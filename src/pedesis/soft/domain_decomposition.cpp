@@ -131,8 +131,27 @@ DomainDecomposition<D>::DomainDecomposition(Communicator& comm, const Box<D>& bo
         r /= grid_[a];
         width_[a] = box.length(a) / grid_[a];
     }
-    ghost_send_.resize(static_cast<std::size_t>(comm.size()));
-    send_.resize(static_cast<std::size_t>(comm.size()));
+    // the processes of the domains next to this one, across faces, edges and corners
+    partner_of_rank_.assign(static_cast<std::size_t>(comm.size()), -1);
+    std::array<int, D> offset;
+    offset.fill(-1);
+    while (true) {
+        std::array<int, D> c;
+        for (int a = 0; a < D; ++a) c[a] = (mine_[a] + offset[a] + grid_[a]) % grid_[a];
+        const int q = rank_of(c);
+        if (q != comm.rank() && partner_of_rank_[static_cast<std::size_t>(q)] < 0) {
+            partner_of_rank_[static_cast<std::size_t>(q)] = 0;
+            partners_.push_back(q);
+        }
+        int a = 0;
+        while (a < D && ++offset[a] == 2) offset[a++] = -1;
+        if (a == D) break;
+    }
+    std::sort(partners_.begin(), partners_.end());
+    for (std::size_t k = 0; k < partners_.size(); ++k)
+        partner_of_rank_[static_cast<std::size_t>(partners_[k])] = static_cast<int>(k);
+    ghost_send_.resize(partners_.size());
+    send_.resize(partners_.size());
 }
 
 template <int D> std::array<int, D> DomainDecomposition<D>::coords_of(const Vec<D>& r) const {
@@ -199,33 +218,48 @@ template <int D> void DomainDecomposition<D>::scatter(SoftState<D>& s) const {
 }
 
 template <int D> void DomainDecomposition<D>::redistribute(SoftState<D>& s, double sort_cell) {
-    // migration
+    // Migration: between rebuilds no particle moves further than a domain is wide, so
+    // particles go to partners, point to point; should one go further (all processes
+    // agree on that), every process exchanges with every other.
     const std::size_t owned = s.owned();
     std::vector<char> keep(owned);
-    for (auto& b : send_) b.clear();
+    std::vector<int> to(owned);
+    bool far = false;
     for (std::size_t i = 0; i < owned; ++i) {
-        const int q = domain_of(s.p.position[i]);
-        keep[i] = q == comm_.rank();
-        if (!keep[i]) pack(s, i, send_[static_cast<std::size_t>(q)]);
+        to[i] = domain_of(s.p.position[i]);
+        keep[i] = to[i] == comm_.rank();
+        far = far || (!keep[i] && partner_of_rank_[static_cast<std::size_t>(to[i])] < 0);
     }
+    far = any(far);
+    std::vector<std::vector<double>> everyone(far ? static_cast<std::size_t>(comm_.size()) : 0);
+    for (auto& b : send_) b.clear();
+    for (std::size_t i = 0; i < owned; ++i)
+        if (!keep[i])
+            pack(s, i,
+                 far ? everyone[static_cast<std::size_t>(to[i])]
+                     : send_[static_cast<std::size_t>(
+                           partner_of_rank_[static_cast<std::size_t>(to[i])])]);
     keep_only(s, keep);
     std::vector<std::size_t> counts;
-    append(comm_.exchange(send_, counts), s);
+    append(far ? comm_.exchange(everyone, counts) : comm_.exchange_with(partners_, send_, counts),
+           s);
     if (sort_cell > 0.0) s.apply_order(space_filling_order(box_, s.p.position, s.p.tag, sort_cell));
 
     // ghosts
     for (auto& b : send_) b.clear();
     for (auto& g : ghost_send_) g.clear();
-    std::vector<int> to;
+    std::vector<int> ranks;
     for (std::size_t i = 0; i < s.size(); ++i) {
-        ghost_destinations(s.p.position[i], to);
-        for (const int q : to) {
-            ghost_send_[static_cast<std::size_t>(q)].push_back(static_cast<std::uint32_t>(i));
-            pack(s, i, send_[static_cast<std::size_t>(q)]);
+        ghost_destinations(s.p.position[i], ranks);
+        for (const int q : ranks) {
+            // (a neighbouring domain's process: a partner)
+            const auto k = static_cast<std::size_t>(partner_of_rank_[static_cast<std::size_t>(q)]);
+            ghost_send_[k].push_back(static_cast<std::uint32_t>(i));
+            pack(s, i, send_[k]);
         }
     }
     const std::size_t mine = s.size();
-    append(comm_.exchange(send_, counts), s);
+    append(comm_.exchange_with(partners_, send_, counts), s);
     s.ghosts = s.size() - mine;
 }
 
@@ -237,7 +271,7 @@ template <int D> void DomainDecomposition<D>::refresh_ghosts(SoftState<D>& s) {
                 send_[q].insert(send_[q].end(), v->c.begin(), v->c.end());
     }
     std::vector<std::size_t> counts;
-    const std::vector<double> in = comm_.exchange(send_, counts);
+    const std::vector<double> in = comm_.exchange_with(partners_, send_, counts);
     if (in.size() != s.ghosts * 3 * D)
         throw std::logic_error("refresh_ghosts: the ghost lists of two processes disagree");
     const double* r = in.data();
@@ -267,6 +301,42 @@ template <int D> void DomainDecomposition<D>::gather(const SoftState<D>& s, Soft
         if (!(tag >= 0.0 && tag < static_cast<double>(n)))
             throw std::logic_error("gather: tags are not 0..N-1");
         unpack(rec, whole, static_cast<std::size_t>(tag));
+    }
+}
+
+template <int D> Box<D> DomainDecomposition<D>::local_box(double skin) const {
+    Vec<D> lengths;
+    std::array<bool, D> periodic;
+    for (int a = 0; a < D; ++a) {
+        const double extent = width_[a] + 2.0 * (range_ + 2.0 * skin);
+        periodic[a] = !(grid_[a] >= 3 && extent < box_.length(a));
+        lengths[a] = periodic[a] ? box_.length(a) : extent;
+    }
+    return Box<D>(lengths, periodic);
+}
+
+template <int D>
+void DomainDecomposition<D>::local_positions(const std::vector<Vec<D>>& pos,
+                                             std::vector<Vec<D>>& out, double skin) const {
+    const Box<D> local = local_box(skin);
+    Vec<D> centre{};
+    std::array<bool, D> shifted{};
+    for (int a = 0; a < D; ++a) {
+        shifted[a] = !local.periodic(a);
+        centre[a] = box_.lo(a) + (mine_[a] + 0.5) * width_[a];
+    }
+    out.resize(pos.size());
+    const auto n = static_cast<std::int64_t>(pos.size());
+#pragma omp parallel for schedule(static) if (n >= 4096)
+    for (std::int64_t i = 0; i < n; ++i) {
+        Vec<D> r = pos[i];
+        for (int a = 0; a < D; ++a)
+            if (shifted[a]) {
+                const double L = box_.length(a);
+                r[a] -= centre[a];
+                r[a] -= L * std::nearbyint(r[a] / L);
+            }
+        out[i] = r;
     }
 }
 

@@ -17,7 +17,10 @@
 //
 // A particle goes at most once to each process (its wrapped position serves every
 // periodic image), so domains must be at least `range` wide: then a particle is a ghost
-// only of the domains next to its own, across faces, edges and corners.
+// only of the domains next to its own, across faces, edges and corners. Every exchange
+// is point to point with those domains' processes (a few messages per step whatever the
+// number of processes), and each process's neighbour list covers its own region
+// (local_box), so that work and memory per process do not grow with their number.
 #include "pedesis/core/communicator.hpp"
 #include "pedesis/soft/soft_state.hpp"
 
@@ -58,6 +61,19 @@ template <int D> class DomainDecomposition {
     // Whether any process says so.
     bool any(bool mine);
 
+    // Where this process's neighbour list bins its particles, so that its cells cover
+    // its own region, not the whole box: the domain widened by `range + 2 skin` (what a
+    // ghost or a particle that left since the last build can reach) on each axis cut
+    // into 3 or more domains where that stays within half the box, with walls there
+    // (nothing lies beyond); elsewhere the whole periodic axis. (Cut into 2, an axis
+    // stays periodic: a ghost may then be near both faces of the domain, through two
+    // images.) Centred at the origin, as every Box; local_positions maps positions into it.
+    Box<D> local_box(double skin) const;
+    // Positions relative to the centre of this process's domain: on the walled axes of
+    // local_box the periodic image nearest to it, elsewhere as they are.
+    void local_positions(const std::vector<Vec<D>>& pos, std::vector<Vec<D>>& out,
+                         double skin) const;
+
   private:
     int domain_of(const Vec<D>& r) const;
     std::array<int, D> coords_of(const Vec<D>& r) const;
@@ -70,7 +86,11 @@ template <int D> class DomainDecomposition {
     std::array<int, D> grid_{};
     std::array<int, D> mine_{};     // this process's domain coordinates
     std::array<double, D> width_{}; // of a domain along each axis
-    // Per process, the owned particles (storage indices) it holds as ghosts, in order.
+    // The processes of the neighbouring domains (ascending), and each process's index
+    // among them (-1: not a partner).
+    std::vector<int> partners_;
+    std::vector<int> partner_of_rank_;
+    // Per partner, the owned particles (storage indices) it holds as ghosts, in order.
     std::vector<std::vector<std::uint32_t>> ghost_send_;
     std::vector<std::vector<double>> send_; // reused buffers
 };

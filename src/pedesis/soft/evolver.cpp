@@ -40,7 +40,9 @@ template <int D> void Evolver<D>::make_list() {
     for (const auto& t : torques_) range = std::max(range, t->range(s_));
     if (range <= 0.0) range = 1e-3; // only one-body terms: an (almost) empty list
     r_list_cut_ = range;
-    nl_ = std::make_unique<NeighborList<D>>(s_.box, range, skin_);
+    // shared among processes, the cells cover this process's region only
+    nl_ = std::make_unique<NeighborList<D>>(domain_ ? domain_->local_box(skin_) : s_.box, range,
+                                            skin_);
 }
 
 template <int D> double Evolver<D>::interaction_reach() {
@@ -52,10 +54,11 @@ template <int D> void Evolver<D>::ensure_list(bool for_totals) {
     if (!nl_) make_list();
     if (domain_) {
         // every process rebuilds when one must: a rebuild moves particles between them
-        const bool rebuild = domain_->any(nl_->needs_rebuild(s_.p.position));
+        domain_->local_positions(s_.p.position, local_, skin_);
+        const bool rebuild = domain_->any(nl_->needs_rebuild(local_));
         if (rebuild) {
             domain_->redistribute(s_);
-            nl_->build(s_.p.position);
+            build_local();
         } else {
             domain_->refresh_ghosts(s_);
         }
@@ -172,6 +175,16 @@ template <int D> void Evolver<D>::evolve(double dt) {
     s_.time += dt;
 }
 
+template <int D> void Evolver<D>::set_domain(DomainDecomposition<D>* domain) {
+    domain_ = domain;
+    nl_.reset(); // its cells cover another region now
+}
+
+template <int D> void Evolver<D>::build_local() {
+    domain_->local_positions(s_.p.position, local_, skin_);
+    nl_->build(local_);
+}
+
 template <int D> void Evolver<D>::evolve_shared(double dt) {
     // The serial step, with the points where the processes must agree: an integrator's
     // error on one process is held until all meet, so that none waits for it forever.
@@ -186,7 +199,7 @@ template <int D> void Evolver<D>::evolve_shared(double dt) {
     if (sort_interval_ > 0 && s_.step > 0 && s_.step % sort_interval_ == 0) {
         // as sort_particles: a fresh list after the sort, so rebuilds count the same
         domain_->redistribute(s_, r_list_cut_ + skin_);
-        nl_->build(s_.p.position);
+        build_local();
         ++builds_;
     }
     if (!forces_current_ && needs_initial_forces()) compute_forces();

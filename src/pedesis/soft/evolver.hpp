@@ -30,7 +30,7 @@ template <int D> class Evolver {
     // blow-up) is thrown on all, with its message. The decomposition must outlive the
     // evolver. The periodic sort then sorts each process's particles, at a shared
     // redistribution.
-    void set_domain(DomainDecomposition<D>* domain) { domain_ = domain; }
+    void set_domain(DomainDecomposition<D>* domain);
     // Whether a caught signal (core/interrupt.hpp) asks the run to stop: under a domain
     // decomposition, whether one reached any process by the end of the last step, so
     // that all stop at the same step.
@@ -86,6 +86,7 @@ template <int D> class Evolver {
     // for_totals: called for the log's totals (under a domain decomposition, see there)
     void ensure_list(bool for_totals = false);
     void evolve_shared(double dt);
+    void build_local(); // the list from the positions in the domain's frame (local_)
     // Under a domain decomposition: throws on every process the error one of them met
     // (`error` non-empty), else returns whether any asks to stop (`stop`).
     bool agree(const std::string& error, bool stop);
@@ -104,6 +105,7 @@ template <int D> class Evolver {
     DomainDecomposition<D>* domain_ = nullptr;
     bool interrupted_ = false; // collective, under a domain decomposition
     bool rebuild_for_totals_ = false;
+    std::vector<Vec<D>> local_; // positions in the frame of the domain's list
     std::vector<std::unique_ptr<ForceTerm<D>>> forces_;
     std::vector<std::unique_ptr<TorqueTerm<D>>> torques_;
     std::vector<std::unique_ptr<Integrator<D>>> integrators_;

@@ -31,6 +31,10 @@ template <int D> class ForceTerm {
     virtual double swim_pressure(const SoftState<D>&, const std::vector<Vec<D>>& /*start*/) const {
         return 0.0;
     }
+    // The active force along the director on species s (of `count`), which makes the swim
+    // pressure: 0 for a passive term. (A run shared among processes sums the swim
+    // pressure from it, soft_observables.hpp.)
+    virtual double swim_force(std::size_t /*s*/, std::size_t /*count*/) const { return 0.0; }
 };
 
 template <int D> class TorqueTerm {

@@ -37,6 +37,10 @@ template <int D> class SelfPropulsion final : public ForceTerm<D> {
         return active_pressure(s, start, table_);
     }
 
+    double swim_force(std::size_t s, std::size_t count) const override {
+        return alpha_.at(s, count);
+    }
+
     void add_forces(SoftState<D>& s, const NeighborList<D>&) const override {
         alpha_.tabulate(s.p.species_table.size(), table_, [](double a) { return a; });
         const double* alpha = table_.data();
