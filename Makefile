@@ -28,6 +28,7 @@ demo: build
 	./$(BUILD)/pedesis analyze speed runs/demo
 	./$(BUILD)/pedesis render runs/demo --out runs/demo/movie.mp4 --color speed
 	@echo "demo: speed plot runs/demo/speed_distribution.png, movie runs/demo/movie.mp4"
+	@echo "demo: see it in the browser: ./$(BUILD)/pedesis view runs/demo   (then open the address it prints)"
 
 # ctest runs tests side by side, each with OpenMP threads: passive waiting keeps idle
 # threads from spinning on cores another test needs (10x slower on 2 busy cores).

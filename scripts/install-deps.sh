@@ -13,7 +13,13 @@ packages=(
   python3-ase python3-vtk9 zlib1g-dev
   clang
   libopenmpi-dev openmpi-bin
+  libcpp-httplib-dev chromium
 )
+# Node.js and npm build the viewer page (web/viewer); a machine that has them from
+# elsewhere (NodeSource) keeps them: Debian's npm would conflict with that nodejs.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

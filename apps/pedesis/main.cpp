@@ -9,6 +9,7 @@
 #include "render_command.hpp"
 #include "run_command.hpp"
 #include "sweep_command.hpp"
+#include "view_command.hpp"
 
 #include "pedesis/core/error.hpp"
 
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
     pedesis::cli::add_init_command(app);
     pedesis::cli::add_analyze_command(app);
     pedesis::cli::add_render_command(app);
+    pedesis::cli::add_view_command(app);
     auto* bench =
         app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");
     bench->require_subcommand(1);

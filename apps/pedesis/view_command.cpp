@@ -1,0 +1,69 @@
+#include "view_command.hpp"
+
+#include "pedesis/core/interrupt.hpp"
+#include "pedesis/view/view_server.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+namespace pedesis::cli {
+
+namespace {
+struct ViewArgs {
+    std::string run_dir;
+    std::string host = "127.0.0.1";
+    int port = 8765;
+    bool open = false;
+};
+
+bool is_loopback(const std::string& host) {
+    return host == "127.0.0.1" || host == "localhost" || host == "::1";
+}
+} // namespace
+
+void add_view_command(CLI::App& app) {
+    auto a = std::make_shared<ViewArgs>();
+    auto* cmd = app.add_subcommand(
+        "view",
+        "Show a run directory in the browser: particles, playback, log plots (docs/view.md)");
+    cmd->add_option("run_dir", a->run_dir, "Run directory")->required();
+    cmd->add_option("--port", a->port, "Port to listen on (0: any free port)")
+        ->check(CLI::Range(0, 65535));
+    cmd->add_option("--host", a->host,
+                    "Address to listen on (default 127.0.0.1: this machine only)");
+    cmd->add_flag("--open", a->open, "Open the page in the default browser (xdg-open)");
+    cmd->callback([a] {
+        view::ViewOptions o;
+        o.run_dir = a->run_dir;
+        o.host = a->host;
+        o.port = a->port;
+        o.page_dir = PEDESIS_VIEWER_DIR;
+        view::ViewServer server(o);
+        if (!is_loopback(a->host))
+            std::cerr << fmt::format(
+                "pedesis view: warning: listening on {}: anyone who can reach this machine "
+                "can read this run\n",
+                a->host);
+        std::cout << fmt::format("pedesis view: {} at {}  (Ctrl-C to stop)\n", a->run_dir,
+                                 server.url())
+                  << std::flush;
+        if (a->open) {
+            const std::string command =
+                fmt::format("xdg-open '{}' >/dev/null 2>&1 &", server.url());
+            if (std::system(command.c_str()) != 0)
+                std::cerr << "pedesis view: could not start a browser; open the address above\n";
+        }
+        InterruptGuard guard;
+        std::thread serving([&] { server.serve(); });
+        while (!interrupt_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        server.stop();
+        serving.join();
+    });
+}
+
+} // namespace pedesis::cli

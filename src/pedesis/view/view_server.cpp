@@ -1,0 +1,197 @@
+#include "pedesis/view/view_server.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/render/run_directory.hpp"
+#include "pedesis/view/frame_arrays.hpp"
+
+#include <fmt/format.h>
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <utility>
+
+namespace pedesis::view {
+
+namespace {
+
+// Frames the server keeps decoded: the page asks for several fields of one frame, and for
+// the frames around its cursor.
+constexpr std::size_t cached_frames = 8;
+
+void send_error(httplib::Response& res, int status, const std::string& message) {
+    res.status = status;
+    res.set_content(nlohmann::json{{"error", message}}.dump(), "application/json");
+}
+
+// log.csv as columns and rows of numbers ("inf" and "nan", which pandas writes and reads,
+// become null: JSON has no such numbers).
+nlohmann::json read_log(const std::filesystem::path& file) {
+    nlohmann::json out = {{"columns", nlohmann::json::array()}, {"rows", nlohmann::json::array()}};
+    std::ifstream in(file);
+    if (!in) return out;
+    std::string line, cell;
+    if (!std::getline(in, line)) return out;
+    std::istringstream header(line);
+    while (std::getline(header, cell, ',')) out["columns"].push_back(cell);
+    const std::size_t columns = out["columns"].size();
+    while (std::getline(in, line)) {
+        std::istringstream row(line);
+        nlohmann::json values = nlohmann::json::array();
+        while (std::getline(row, cell, ',')) {
+            char* end = nullptr;
+            const double v = std::strtod(cell.c_str(), &end);
+            if (end == cell.c_str() || !std::isfinite(v))
+                values.push_back(nullptr);
+            else
+                values.push_back(v);
+        }
+        // a row being written (no newline yet, or cut short) is left for the next request
+        if (values.size() == columns && !in.eof()) out["rows"].push_back(std::move(values));
+    }
+    return out;
+}
+
+} // namespace
+
+struct ViewServer::Impl {
+    ViewOptions options;
+    httplib::Server server;
+    int port = 0;
+    std::mutex mutex; // the frame source and cache (the server answers on several threads)
+    std::unique_ptr<render::FrameSource> source;
+    std::deque<std::pair<std::size_t, render::Frame>> cache;
+
+    const render::Frame& frame(std::size_t k) {
+        for (const auto& [index, f] : cache)
+            if (index == k) return f;
+        if (cache.size() == cached_frames) cache.pop_front();
+        cache.emplace_back(k, source->frame(k));
+        return cache.back().second;
+    }
+
+    nlohmann::json info() {
+        const render::Frame& f = frame(0);
+        nlohmann::json species = nlohmann::json::array();
+        for (std::size_t s = 0; s < f.species_names.size(); ++s) {
+            double radius = 0.0;
+            for (std::size_t i = 0; i < f.size(); ++i)
+                if (f.species[i] == s) {
+                    radius = f.radius[i];
+                    break;
+                }
+            species.push_back({{"name", f.species_names[s]}, {"radius", radius}});
+        }
+        nlohmann::json fields = {"position", "radius", "species"};
+        if (frame_has(f, Field::speed)) fields.push_back("speed");
+        if (frame_has(f, Field::director)) fields.insert(fields.end(), {"angle", "director"});
+        return {{"run", std::filesystem::absolute(options.run_dir).filename().string()},
+                {"source", source->description()},
+                {"dimension", f.dimension},
+                {"box_lo", f.box_lo},
+                {"box_length", f.box_length},
+                {"periodic", f.periodic},
+                {"frames", source->frames()},
+                {"particles", f.size()},
+                {"species", species},
+                {"fields", fields}};
+    }
+
+    void routes() {
+        server.Get("/api/info", [this](const httplib::Request&, httplib::Response& res) {
+            std::lock_guard lock(mutex);
+            try {
+                res.set_content(info().dump(), "application/json");
+            } catch (const std::exception& e) {
+                send_error(res, 500, e.what());
+            }
+        });
+        server.Get("/api/log", [this](const httplib::Request&, httplib::Response& res) {
+            res.set_content(read_log(options.run_dir / "log.csv").dump(), "application/json");
+        });
+        server.Get(R"(/api/frame/(\d{1,18})/(\w+))",
+                   [this](const httplib::Request& req, httplib::Response& res) {
+                       answer_frame(req, res);
+                   });
+        server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+            if (res.body.empty())
+                send_error(res, res.status, fmt::format("no such resource: {}", req.path));
+        });
+        if (!server.set_mount_point("/", options.page_dir.string()))
+            throw InputError(fmt::format(
+                "pedesis view: the viewer page is not built ({} is missing): it needs Node.js "
+                "and npm at build time; install them (make deps) and build again (make build)",
+                options.page_dir.string()));
+    }
+
+    void answer_frame(const httplib::Request& req, httplib::Response& res) {
+        const std::optional<Field> field = field_named(req.matches[2].str());
+        if (!field)
+            return send_error(res, 400,
+                              fmt::format("unknown field '{}' (known: position, radius, species, "
+                                          "speed, angle, director)",
+                                          req.matches[2].str()));
+        const std::size_t k = std::stoull(req.matches[1].str());
+        std::lock_guard lock(mutex);
+        try {
+            // a trajectory still being written grows: ask the file, not a count from before
+            if (k >= source->frames())
+                return send_error(res, 404,
+                                  fmt::format("frame {} is past the end: the run has {} frames", k,
+                                              source->frames()));
+            const render::Frame& f = frame(k);
+            if (!frame_has(f, *field))
+                return send_error(res, 404,
+                                  fmt::format("the frames of this run store no {}",
+                                              *field == Field::speed ? "velocities" : "directors"));
+            res.set_header("X-Pedesis-Time", f.time ? fmt::format("{}", *f.time) : "");
+            res.set_header("X-Pedesis-Step", f.step ? std::to_string(*f.step) : "");
+            res.set_header("Access-Control-Expose-Headers", "X-Pedesis-Time, X-Pedesis-Step");
+            res.set_content(frame_bytes(f, *field), "application/octet-stream");
+        } catch (const InputError& e) {
+            send_error(res, 422, e.what());
+        }
+    }
+};
+
+ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl>()) {
+    impl_->options = options;
+    render::OpenedRun run =
+        render::open_run_directory(options.run_dir, render::SourceKind::automatic);
+    impl_->source = std::move(run.source);
+    impl_->routes();
+    impl_->port =
+        options.port == 0
+            ? impl_->server.bind_to_any_port(options.host)
+            : (impl_->server.bind_to_port(options.host, options.port) ? options.port : -1);
+    if (impl_->port < 0)
+        throw InputError(fmt::format("pedesis view: cannot listen on {}:{} (in use, or not an "
+                                     "address of this machine); choose another with --port",
+                                     options.host, options.port));
+}
+
+ViewServer::~ViewServer() = default;
+
+int ViewServer::port() const {
+    return impl_->port;
+}
+
+std::string ViewServer::url() const {
+    const std::string& h = impl_->options.host;
+    return fmt::format("http://{}:{}/", h.find(':') != std::string::npos ? "[" + h + "]" : h,
+                       impl_->port);
+}
+
+void ViewServer::serve() {
+    impl_->server.listen_after_bind();
+}
+
+void ViewServer::stop() {
+    impl_->server.stop();
+}
+
+} // namespace pedesis::view

@@ -1,0 +1,46 @@
+#pragma once
+// The HTTP server of `pedesis view`: the viewer page and, under /api, a run directory's
+// frames (binary typed arrays, frame_arrays.hpp) and log. Read-only: it serves what the
+// run directory holds when asked, so a run still being written shows its new frames.
+//
+//   GET /                      the page (index.html, viewer.js, viewer.css of page_dir)
+//   GET /api/info              JSON: dimension, box, frames, particles, species, fields
+//   GET /api/frame/K/FIELD     bytes of FIELD of frame K (headers X-Pedesis-Time, -Step)
+//   GET /api/log               JSON: log.csv's columns and rows (null for inf and nan)
+//
+// A frame past the end, an unknown field, or one the run's files do not store is a 4xx
+// with a JSON {"error": message}.
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace pedesis::view {
+
+struct ViewOptions {
+    std::filesystem::path run_dir;
+    std::string host = "127.0.0.1";
+    int port = 8765;                // 0: any free port
+    std::filesystem::path page_dir; // the built page
+};
+
+class ViewServer {
+  public:
+    // Opens the run's trajectory and binds the port; InputError (naming the directory,
+    // or the port and --port) if either fails.
+    explicit ViewServer(const ViewOptions& options);
+    ~ViewServer();
+    ViewServer(const ViewServer&) = delete;
+    ViewServer& operator=(const ViewServer&) = delete;
+
+    int port() const;
+    std::string url() const;
+    // Serves until stop() (from another thread).
+    void serve();
+    void stop();
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace pedesis::view

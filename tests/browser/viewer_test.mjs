@@ -1,0 +1,226 @@
+// `pedesis view` in a real browser: Debian's chromium, headless, driven by playwright-core
+// (from web/viewer's npm packages), software WebGL (SwiftShader), localhost only.
+//
+//   node viewer_test.mjs PEDESIS_BINARY WEB_VIEWER_DIR SCRATCH_DIR [SCREENSHOT.png]
+//
+// For small runs of each engine (soft 2D and 3D, event 2D, stepped 3D) it checks what the
+// page draws against the run's own extended XYZ file, read here (an independent reader
+// of a second output): the instance count is N; after scrubbing to the last frame the
+// drawn centres are that frame's positions; in 2D the pixel at the projected centre of
+// every particle that no other covers has its species' colour in the PNG the screenshot
+// button saves; colouring by speed changes the colours; the plot has a point per row of
+// log.csv. And it sends the server bad requests: each a 4xx with a message.
+import { spawn, execFileSync } from 'node:child_process';
+import { createRequire } from 'node:module';
+import fs from 'node:fs';
+import path from 'node:path';
+
+const [binary, webDir, scratch, screenshotOut] = process.argv.slice(2);
+const require = createRequire(path.join(webDir, 'package.json'));
+const { chromium } = require('playwright-core');
+const CHROMIUM = '/usr/bin/chromium';
+const PALETTE = ['1f77b4', 'ff7f0e', '2ca02c', 'd62728'];
+
+let failures = 0;
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures += 1;
+}
+
+function gasConfig(dimension, dynamics) {
+  const engine = dynamics === 'stepped' ? 'dynamics = "stepped"\n[stepped]\ndt = 0.02' : 'dynamics = "event"';
+  return `dimension = ${dimension}\nseed = 7\n${engine}\n[box]\nlength = ${dimension === 2 ? 30 : 12}.0\n` +
+    '[[species]]\nname = "A"\ncount = 150\nradius = 0.5\n' +
+    '[[species]]\nname = "B"\ncount = 50\nradius = 0.7\nmass = 3.0\n' +
+    '[initial]\nvelocities = "normal"\nsigma = 1.0\n[run]\ntime = 2.0\n' +
+    '[output]\nlog_interval = 0.25\nsnapshot_interval = 0.5\nformats = ["gsd", "xyz"]\n';
+}
+
+function softConfig(dimension) {
+  return `dimension = ${dimension}\ndynamics = "brownian"\nseed = 3\n[box]\nlength = ${dimension === 2 ? 24 : 9}.0\n` +
+    '[[species]]\nname = "A"\ncount = 150\nradius = 0.5\n' +
+    '[[species]]\nname = "B"\ncount = 50\nradius = 0.8\n' +
+    '[initial]\npositions = "random"\nmin_distance = 1.0\n' +
+    '[[force]]\nname = "harmonic"\nk = 20.0\n[[force]]\nname = "self_propulsion"\nalpha = 1.0\n' +
+    '[[integrator]]\nname = "brownian"\nT = 0.05\ngamma = 1.0\n' +
+    '[[integrator]]\nname = "brownian_rotation"\nT = 0.1\ngamma = 1.0\n' +
+    '[run]\ndt = 0.005\nsteps = 400\n[output]\nlog_every = 20\nsnapshot_every = 100\n' +
+    'formats = ["gsd", "xyz"]\nprogress = false\n';
+}
+
+// Extended XYZ frames: positions and species names per particle.
+function readXyz(file) {
+  const lines = fs.readFileSync(file, 'utf8').split('\n');
+  const frames = [];
+  for (let at = 0; at < lines.length && lines[at].trim();) {
+    const n = Number(lines[at]);
+    const rows = lines.slice(at + 2, at + 2 + n).map((l) => l.trim().split(/\s+/));
+    frames.push({ species: rows.map((r) => r[0]), pos: rows.map((r) => r.slice(1, 4).map(Number)) });
+    at += 2 + n;
+  }
+  return frames;
+}
+
+function startServer(dir) {
+  return new Promise((resolve, reject) => {
+    const server = spawn(binary, ['view', dir, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+    let out = '';
+    server.stdout.on('data', (d) => {
+      out += d;
+      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      if (m) resolve({ server, url: m[0] });
+    });
+    server.stderr.on('data', (d) => process.stderr.write(d));
+    server.on('exit', (code) => reject(new Error(`pedesis view exited (${code}): ${out}`)));
+  });
+}
+
+// The PNG of the screenshot button's path (the canvas as image/png), read back at (x, y).
+async function pngPixels(page, points) {
+  return page.evaluate(async (pts) => {
+    const canvas = document.querySelector('#view canvas');
+    window.pedesisView.renderNow();
+    const url = canvas.toDataURL('image/png');
+    const img = new Image();
+    await new Promise((done) => { img.onload = done; img.src = url; });
+    const copy = document.createElement('canvas');
+    copy.width = img.width;
+    copy.height = img.height;
+    const ctx = copy.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const rect = canvas.getBoundingClientRect();
+    const sx = img.width / rect.width, sy = img.height / rect.height;
+    return pts.map(({ x, y }) => Array.from(
+      ctx.getImageData(Math.floor((x - rect.left) * sx), Math.floor((y - rect.top) * sy), 1, 1).data));
+  }, points);
+}
+
+function hexToRgb(h) {
+  return [0, 2, 4].map((k) => parseInt(h.slice(k, k + 2), 16));
+}
+
+async function checkRun(browser, name, dimension, dir) {
+  const xyz = readXyz(path.join(dir, 'trajectory.xyz'));
+  const log = fs.readFileSync(path.join(dir, 'log.csv'), 'utf8').trim().split('\n');
+  const { server, url } = await startServer(dir);
+  try {
+    const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(String(e)));
+    await page.goto(url);
+    await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+    const n = xyz[0].pos.length;
+    check(await page.evaluate(() => window.pedesisView.instanceCount()) === n,
+      `${name}: draws N = ${n} instances`);
+    check(await page.evaluate(() => window.pedesisView.frames()) === xyz.length,
+      `${name}: knows the ${xyz.length} frames`);
+
+    const last = xyz.length - 1;
+    await page.evaluate((k) => window.pedesisView.setFrame(k), last);
+    const drawn = await page.evaluate(() => window.pedesisView.drawnPositions());
+    let worst = 0;
+    for (let i = 0; i < n; ++i)
+      for (let a = 0; a < 3; ++a) worst = Math.max(worst, Math.abs(drawn[i][a] - xyz[last].pos[i][a]));
+    // float32 on the wire: 1e-7 relative of positions up to 15
+    check(worst < 1e-4, `${name}: after scrubbing to frame ${last} the drawn centres are its positions (worst ${worst.toExponential(2)})`);
+
+    const rows = log.length - 1;
+    check(await page.evaluate(() => window.pedesisView.logPoints()) === rows,
+      `${name}: the plot has the ${rows} rows of log.csv`);
+
+    const names = [...new Set(xyz[0].species)];
+    if (dimension === 2) {
+      // particles whose centre no other particle covers (drawn later or earlier)
+      const f = xyz[last], radius = (s) => (s === 'A' ? 0.5 : (name.startsWith('soft') ? 0.8 : 0.7));
+      const free = [];
+      for (let i = 0; i < n && free.length < 40; ++i) {
+        let covered = false;
+        for (let j = 0; j < n && !covered; ++j) {
+          if (j === i) continue;
+          const dx = f.pos[i][0] - f.pos[j][0], dy = f.pos[i][1] - f.pos[j][1];
+          covered = Math.hypot(dx, dy) < radius(f.species[j]) + 0.05;
+        }
+        if (!covered) free.push(i);
+      }
+      const points = await page.evaluate((ids) => ids.map((i) => window.pedesisView.project(i)), free);
+      const pixels = await pngPixels(page, points);
+      let matching = 0;
+      free.forEach((i, k) => {
+        const want = hexToRgb(PALETTE[names.indexOf(f.species[i])]);
+        if (want.every((c, a) => Math.abs(c - pixels[k][a]) <= 6)) matching += 1;
+        else console.log(`     particle ${i}: pixel ${pixels[k].slice(0, 3)} against ${want}`);
+      });
+      check(free.length >= 10 && matching === free.length,
+        `${name}: ${matching} of ${free.length} uncovered particles show their species' colour at their centre in the PNG`);
+      if (screenshotOut && name === 'soft 2D') {
+        await page.evaluate(() => window.pedesisView.renderNow());
+        await page.screenshot({ path: screenshotOut });
+      }
+    }
+
+    if (await page.evaluate(() => window.pedesisView.info.fields.includes('speed'))) {
+      const before = await page.evaluate((k) => Array.from({ length: k }, (_, i) => window.pedesisView.instanceColour(i)), n);
+      await page.evaluate(() => window.pedesisView.setColour('speed'));
+      const after = await page.evaluate((k) => Array.from({ length: k }, (_, i) => window.pedesisView.instanceColour(i)), n);
+      const changed = after.filter((c, i) => c !== before[i]).length;
+      const distinct = new Set(after).size;
+      check(changed > n / 2 && distinct > 10, `${name}: colour by speed changes ${changed} of ${n} colours (${distinct} distinct)`);
+    }
+    check(errors.length === 0, `${name}: no error in the page ${errors.join('; ')}`);
+    await page.close();
+    return url;
+  } finally {
+    server.kill('SIGINT');
+  }
+}
+
+async function checkBadRequests(dir) {
+  const { server, url } = await startServer(dir);
+  try {
+    const cases = [
+      ['api/frame/999/position', 404, 'past the end'],
+      ['api/frame/0/colour', 400, "unknown field 'colour'"],
+      ['api/frame/99999999999999999999/position', 404, 'no such resource'],
+      ['api/nothing', 404, 'no such resource'],
+    ];
+    for (const [p, status, text] of cases) {
+      const r = await fetch(url + p);
+      const body = await r.json().catch(() => ({}));
+      check(r.status === status && String(body.error).includes(text),
+        `bad request ${p}: ${r.status} "${body.error}"`);
+    }
+    const ok = await fetch(url + 'api/frame/0/position');
+    check(ok.status === 200, 'the server still answers after bad requests');
+  } finally {
+    server.kill('SIGINT');
+  }
+}
+
+async function main() {
+  if (!fs.existsSync(CHROMIUM)) throw new Error(`${CHROMIUM} is missing: install Debian's chromium (make deps)`);
+  const runs = [
+    ['soft 2D', 2, softConfig(2)], ['soft 3D', 3, softConfig(3)],
+    ['event 2D', 2, gasConfig(2, 'event')], ['stepped 3D', 3, gasConfig(3, 'stepped')],
+  ];
+  fs.rmSync(scratch, { recursive: true, force: true });
+  fs.mkdirSync(scratch, { recursive: true });
+  for (const [name, , config] of runs) {
+    const file = path.join(scratch, `${name.replace(' ', '_')}.toml`);
+    fs.writeFileSync(file, config);
+    execFileSync(binary, ['run', file, '--out', path.join(scratch, name.replace(' ', '_'))],
+      { stdio: ['ignore', 'ignore', 'inherit'], env: { ...process.env, OMP_NUM_THREADS: '1' } });
+  }
+  const browser = await chromium.launch({ executablePath: CHROMIUM, headless: true,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'] });
+  try {
+    for (const [name, dimension] of runs)
+      await checkRun(browser, name, dimension, path.join(scratch, name.replace(' ', '_')));
+  } finally {
+    await browser.close();
+  }
+  await checkBadRequests(path.join(scratch, 'soft_2D'));
+  console.log(failures ? `${failures} check(s) failed` : 'all checks passed');
+  process.exit(failures ? 1 : 0);
+}
+
+main().catch((e) => { console.error(e); process.exit(1); });

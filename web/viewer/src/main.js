@@ -1,0 +1,436 @@
+// The page of `pedesis view` (docs/view.md): a run's particles drawn with three.js
+// (one instanced mesh: a disk or sphere per particle at its true radius), a time slider
+// and playback over the frames, colour by species, speed or polarity angle, director
+// arrows, and the run's log plotted with uPlot beside it, with a cursor at the frame's
+// time. Frames come from the server as binary typed arrays (src/pedesis/view), and only
+// a window of frames around the cursor is kept.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import uPlot from 'uplot';
+import 'uplot/dist/uPlot.min.css';
+import './viewer.css';
+
+const $ = (id) => document.getElementById(id);
+const KEEP = 6; // frames kept on each side of the cursor
+const AHEAD = 3; // frames fetched ahead while playing
+const PALETTE = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2',
+  '#7f7f7f', '#bcbd22', '#17becf'];
+// viridis at 0, 1/4, 1/2, 3/4, 1
+const VIRIDIS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+
+async function fetchJson(path) {
+  const r = await fetch(path);
+  const body = await r.json();
+  if (!r.ok) throw new Error(body.error || r.statusText);
+  return body;
+}
+
+async function fetchArray(path, Type) {
+  const r = await fetch(path);
+  if (!r.ok) {
+    const body = await r.json().catch(() => ({}));
+    throw new Error(body.error || `${path}: ${r.status}`);
+  }
+  return { data: new Type(await r.arrayBuffer()), time: r.headers.get('X-Pedesis-Time'),
+    step: r.headers.get('X-Pedesis-Step') };
+}
+
+function viridis(t, out) {
+  const x = Math.min(Math.max(t, 0), 1) * (VIRIDIS.length - 1);
+  const k = Math.min(Math.floor(x), VIRIDIS.length - 2);
+  const f = x - k;
+  const c = VIRIDIS[k].map((v, a) => (v + f * (VIRIDIS[k + 1][a] - v)) / 255);
+  return out.setRGB(c[0], c[1], c[2], THREE.SRGBColorSpace);
+}
+
+// angle in (-pi, pi] round the colour wheel, so that opposite directors differ most
+function wheel(angle, out) {
+  return out.setHSL((angle / (2 * Math.PI) + 1) % 1, 0.85, 0.5, THREE.SRGBColorSpace);
+}
+
+class Viewer {
+  constructor(info) {
+    this.info = info;
+    this.dim = info.dimension;
+    this.frames = info.frames;
+    this.cache = new Map();
+    this.index = 0;
+    this.mode = 'species';
+    this.arrows = false;
+    this.playing = false;
+    this.wanted = 0; // the last frame asked for: a slower answer for another is dropped
+
+    const view = $('view');
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio);
+    this.renderer.setClearColor(0xffffff);
+    view.prepend(this.renderer.domElement);
+    this.scene = new THREE.Scene();
+
+    const L = info.box_length;
+    const lo = info.box_lo;
+    this.centre = new THREE.Vector3(lo[0] + L[0] / 2, lo[1] + L[1] / 2, lo[2] + L[2] / 2);
+    if (this.dim === 2) {
+      this.camera = new THREE.OrthographicCamera(-1, 1, 1, -1, -100, 100);
+      this.camera.position.set(this.centre.x, this.centre.y, 10);
+    } else {
+      const size = Math.max(L[0], L[1], L[2]);
+      this.camera = new THREE.PerspectiveCamera(40, 1, size / 100, size * 20);
+      this.camera.position.copy(this.centre).add(new THREE.Vector3(1.2, 0.9, 1.6).multiplyScalar(size));
+      this.scene.add(new THREE.AmbientLight(0xffffff, 1.2));
+      const sun = new THREE.DirectionalLight(0xffffff, 2.0);
+      sun.position.set(1, 2, 3);
+      this.camera.add(sun);
+      this.scene.add(this.camera);
+    }
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.target.copy(this.centre);
+    if (this.dim === 2) {
+      this.controls.enableRotate = false;
+      this.controls.screenSpacePanning = true;
+      this.controls.mouseButtons = { LEFT: THREE.MOUSE.PAN, MIDDLE: THREE.MOUSE.DOLLY,
+        RIGHT: THREE.MOUSE.PAN };
+      this.controls.zoomToCursor = true;
+    }
+    this.controls.addEventListener('change', () => this.requestRender());
+    this.scene.add(this.boxOutline(lo, L));
+
+    this.capacity = 0;
+    this.mesh = null;
+    this.arrowLines = null;
+    new ResizeObserver(() => this.resize()).observe(view);
+    this.resize();
+  }
+
+  boxOutline(lo, L) {
+    const material = new THREE.LineBasicMaterial({ color: 0x444444 });
+    if (this.dim === 2) {
+      const z = 0;
+      const pts = [[lo[0], lo[1]], [lo[0] + L[0], lo[1]], [lo[0] + L[0], lo[1] + L[1]],
+        [lo[0], lo[1] + L[1]]].map(([x, y]) => new THREE.Vector3(x, y, z));
+      return new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(pts), material);
+    }
+    const box = new THREE.LineSegments(
+      new THREE.EdgesGeometry(new THREE.BoxGeometry(L[0], L[1], L[2])), material);
+    box.position.copy(this.centre);
+    return box;
+  }
+
+  // One instance per particle; the mesh grows when a frame holds more particles.
+  ensureCapacity(n) {
+    if (n <= this.capacity) return;
+    if (this.mesh) this.scene.remove(this.mesh);
+    const geometry = this.dim === 2 ? new THREE.CircleGeometry(1, 24)
+      : new THREE.SphereGeometry(1, 16, 12);
+    const material = this.dim === 2 ? new THREE.MeshBasicMaterial()
+      : new THREE.MeshLambertMaterial();
+    this.mesh = new THREE.InstancedMesh(geometry, material, n);
+    this.mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
+    this.mesh.setColorAt(0, new THREE.Color());
+    this.mesh.frustumCulled = false;
+    this.scene.add(this.mesh);
+    this.capacity = n;
+  }
+
+  resize() {
+    const view = $('view');
+    const w = view.clientWidth || 1, h = view.clientHeight || 1;
+    this.renderer.setSize(w, h, false);
+    const aspect = w / h;
+    if (this.dim === 2) {
+      const L = this.info.box_length;
+      const half = 0.55 * Math.max(L[1], L[0] / aspect);
+      Object.assign(this.camera, { left: -half * aspect, right: half * aspect, top: half,
+        bottom: -half });
+    } else {
+      this.camera.aspect = aspect;
+    }
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+
+  requestRender() {
+    if (this.pending) return;
+    this.pending = true;
+    requestAnimationFrame(() => { this.pending = false; this.render(); });
+  }
+
+  render() {
+    this.controls.update();
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  needsField() {
+    return this.mode === 'species' ? null : this.mode;
+  }
+
+  async load(k) {
+    let f = this.cache.get(k);
+    if (!f) {
+      const base = `api/frame/${k}/`;
+      const [pos, species, radius] = await Promise.all([
+        fetchArray(base + 'position', Float32Array), fetchArray(base + 'species', Uint32Array),
+        fetchArray(base + 'radius', Float32Array)]);
+      f = { pos: pos.data, species: species.data, radius: radius.data, fields: {},
+        time: pos.time === null || pos.time === '' ? null : Number(pos.time),
+        step: pos.step === null || pos.step === '' ? null : Number(pos.step) };
+      this.cache.set(k, f);
+    }
+    const wanted = [this.needsField(), this.arrows ? 'director' : null].filter((x) => x);
+    for (const name of wanted)
+      if (!f.fields[name]) f.fields[name] = (await fetchArray(`api/frame/${k}/${name}`, Float32Array)).data;
+    return f;
+  }
+
+  forgetFarFrames() {
+    for (const k of this.cache.keys())
+      if (Math.abs(k - this.index) > KEEP) this.cache.delete(k);
+  }
+
+  async show(k) {
+    this.wanted = k;
+    const f = await this.load(k);
+    if (this.wanted !== k) return; // another frame was asked for meanwhile
+    this.index = k;
+    this.draw(f);
+    this.forgetFarFrames();
+    $('slider').value = String(k);
+    const t = f.time !== null ? `t = ${f.time.toPrecision(6)}` : '';
+    const s = f.step !== null ? `step ${f.step}` : '';
+    $('clock').textContent = `frame ${k} / ${this.frames - 1}  ${t}  ${s}`;
+    if (this.onFrame) this.onFrame(f);
+  }
+
+  draw(f) {
+    const n = f.species.length;
+    this.ensureCapacity(n);
+    const m = new THREE.Matrix4(), c = new THREE.Color();
+    const field = this.needsField() ? f.fields[this.needsField()] : null;
+    let lo = 0, hi = 1;
+    if (this.mode === 'speed') {
+      hi = 0;
+      for (let i = 0; i < n; ++i) hi = Math.max(hi, field[i]);
+      hi = hi || 1;
+    }
+    for (let i = 0; i < n; ++i) {
+      const r = f.radius[i];
+      m.makeScale(r, r, r).setPosition(f.pos[3 * i], f.pos[3 * i + 1], f.pos[3 * i + 2]);
+      this.mesh.setMatrixAt(i, m);
+      if (this.mode === 'speed') viridis((field[i] - lo) / (hi - lo), c);
+      else if (this.mode === 'angle') wheel(field[i], c);
+      else c.setStyle(PALETTE[f.species[i] % PALETTE.length], THREE.SRGBColorSpace);
+      this.mesh.setColorAt(i, c);
+    }
+    this.mesh.count = n;
+    this.mesh.instanceMatrix.needsUpdate = true;
+    this.mesh.instanceColor.needsUpdate = true;
+    this.drawArrows(f, n);
+    this.colourBar(lo, hi);
+    this.requestRender();
+  }
+
+  // A line from each centre along its director, one radius and a half long.
+  drawArrows(f, n) {
+    if (this.arrowLines) { this.scene.remove(this.arrowLines); this.arrowLines = null; }
+    const d = f.fields.director;
+    if (!this.arrows || !d) return;
+    const xyz = new Float32Array(6 * n);
+    for (let i = 0; i < n; ++i)
+      for (let a = 0; a < 3; ++a) {
+        xyz[6 * i + a] = f.pos[3 * i + a];
+        xyz[6 * i + 3 + a] = f.pos[3 * i + a] + 1.5 * f.radius[i] * d[3 * i + a];
+      }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(xyz, 3));
+    this.arrowLines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ color: 0x000000 }));
+    this.arrowLines.position.z = this.dim === 2 ? 0.01 : 0;
+    this.scene.add(this.arrowLines);
+  }
+
+  colourBar(lo, hi) {
+    const bar = $('colourbar');
+    if (this.mode === 'species') {
+      bar.style.display = 'block';
+      bar.innerHTML = this.info.species.map((s, k) =>
+        `<span style="color:${PALETTE[k % PALETTE.length]}">●</span> ${s.name} `).join('');
+      return;
+    }
+    const stops = [];
+    const c = new THREE.Color();
+    for (let k = 0; k <= 10; ++k) {
+      if (this.mode === 'speed') viridis(k / 10, c); else wheel(-Math.PI + (2 * Math.PI * k) / 10, c);
+      stops.push(`#${c.getHexString(THREE.SRGBColorSpace)}`);
+    }
+    const [a, b] = this.mode === 'speed' ? [lo.toPrecision(3), hi.toPrecision(3)] : ['−π', 'π'];
+    bar.style.display = 'block';
+    bar.innerHTML = `${this.mode === 'speed' ? 'speed |v|' : 'polarity angle'}` +
+      `<div class="bar" style="background:linear-gradient(to right,${stops.join(',')})"></div>` +
+      `<div class="ends"><span>${a}</span><span>${b}</span></div>`;
+  }
+
+  async setColour(mode) {
+    this.mode = mode;
+    await this.show(this.index);
+  }
+
+  async setArrows(on) {
+    this.arrows = on;
+    await this.show(this.index);
+  }
+
+  async play() {
+    this.playing = !this.playing;
+    $('play').textContent = this.playing ? '❚❚' : '▶';
+    while (this.playing) {
+      const started = performance.now();
+      const next = (this.index + 1) % this.frames;
+      await this.show(next);
+      for (let k = 1; k <= AHEAD; ++k)
+        if (next + k < this.frames) this.load(next + k).catch(() => {});
+      const wait = 1000 / Number($('fps').value) - (performance.now() - started);
+      await new Promise((done) => setTimeout(done, Math.max(0, wait)));
+    }
+  }
+
+  // The CSS-pixel position of particle i's centre in the page (for tests).
+  project(i) {
+    const m = new THREE.Matrix4();
+    this.mesh.getMatrixAt(i, m);
+    const p = new THREE.Vector3().setFromMatrixPosition(m).project(this.camera);
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
+  }
+}
+
+// The log beside the view: one column against time (or step), with the frame's instant.
+class LogPlot {
+  constructor(viewer) {
+    this.viewer = viewer;
+    this.plot = null;
+    this.log = null;
+    $('column').addEventListener('change', () => this.draw());
+  }
+
+  async refresh() {
+    this.log = await fetchJson('api/log');
+    const select = $('column');
+    const x = this.xColumn();
+    const others = this.log.columns.filter((c) => c !== x && c !== 'step');
+    if (select.options.length !== others.length) {
+      const keep = select.value;
+      select.innerHTML = others.map((c) => `<option>${c}</option>`).join('');
+      const preferred = ['temperature', 'pressure', 'polar_order'].find((c) => others.includes(c));
+      select.value = others.includes(keep) ? keep : (preferred || others[0] || '');
+    }
+    this.draw();
+  }
+
+  xColumn() {
+    return this.log.columns.includes('time') ? 'time' : 'step';
+  }
+
+  draw() {
+    if (!this.log || !this.log.columns.length) return;
+    const xi = this.log.columns.indexOf(this.xColumn());
+    const yi = this.log.columns.indexOf($('column').value);
+    if (yi < 0) return;
+    const data = [this.log.rows.map((r) => r[xi]), this.log.rows.map((r) => r[yi])];
+    const el = $('plot');
+    if (this.plot) this.plot.destroy();
+    const cursor = (u) => {
+      const f = this.viewer.cache.get(this.viewer.index);
+      const at = f ? (this.xColumn() === 'time' ? f.time : f.step) : null;
+      if (at === null || at === undefined) return;
+      const x = u.valToPos(at, 'x', true);
+      const ctx = u.ctx;
+      ctx.save();
+      ctx.strokeStyle = '#d62728';
+      ctx.lineWidth = 2;
+      ctx.beginPath();
+      ctx.moveTo(x, u.bbox.top);
+      ctx.lineTo(x, u.bbox.top + u.bbox.height);
+      ctx.stroke();
+      ctx.restore();
+    };
+    this.plot = new uPlot({ width: el.clientWidth || 400, height: 280,
+      series: [{ label: this.xColumn() }, { label: $('column').value, stroke: '#1f77b4' }],
+      scales: { x: { time: false } }, hooks: { draw: [cursor] } }, data, el);
+  }
+}
+
+async function main() {
+  const info = await fetchJson('api/info');
+  document.title = `pedesis view: ${info.run}`;
+  $('title').textContent = `${info.run} (${info.dimension}D, N = ${info.particles})`;
+  const viewer = new Viewer(info);
+  const plot = new LogPlot(viewer);
+  viewer.onFrame = () => { if (plot.plot) plot.plot.redraw(false); };
+
+  const colour = $('colour');
+  colour.innerHTML = ['species', 'speed', 'angle'].filter((m) => m === 'species' || info.fields.includes(m))
+    .map((m) => `<option value="${m}">${m === 'angle' ? 'polarity angle' : m}</option>`).join('');
+  colour.addEventListener('change', () => viewer.setColour(colour.value).catch(report));
+  $('arrows-label').style.display = info.fields.includes('director') ? '' : 'none';
+  $('arrows').addEventListener('change', (e) => viewer.setArrows(e.target.checked).catch(report));
+  const slider = $('slider');
+  slider.max = String(info.frames - 1);
+  slider.addEventListener('input', () => viewer.show(Number(slider.value)).catch(report));
+  $('play').addEventListener('click', () => viewer.play().catch(report));
+  document.addEventListener('keydown', (e) => {
+    if (e.code === 'Space' && e.target === document.body) { e.preventDefault(); viewer.play().catch(report); }
+  });
+  $('shot').addEventListener('click', () => {
+    viewer.render();
+    viewer.renderer.domElement.toBlob((blob) => {
+      const a = document.createElement('a');
+      a.href = URL.createObjectURL(blob);
+      a.download = `${info.run}_frame${viewer.index}.png`;
+      a.click();
+    }, 'image/png');
+  });
+
+  await viewer.show(0);
+  await plot.refresh();
+  // a run still going writes more frames and rows: look again now and then
+  setInterval(async () => {
+    try {
+      const now = await fetchJson('api/info');
+      if (now.frames !== viewer.frames) {
+        viewer.frames = now.frames;
+        slider.max = String(now.frames - 1);
+        await plot.refresh();
+      }
+    } catch (e) { /* the server has stopped: keep what is shown */ }
+  }, 2000);
+
+  // What the tests read back (tests/browser): the page's state, not its pixels alone.
+  window.pedesisView = {
+    info, frames: () => viewer.frames, frameIndex: () => viewer.index,
+    instanceCount: () => viewer.mesh.count,
+    setFrame: (k) => viewer.show(k), setColour: (m) => viewer.setColour(m),
+    drawnPositions: () => {
+      const m = new THREE.Matrix4(), p = new THREE.Vector3(), out = [];
+      for (let i = 0; i < viewer.mesh.count; ++i) {
+        viewer.mesh.getMatrixAt(i, m);
+        p.setFromMatrixPosition(m);
+        out.push([p.x, p.y, p.z]);
+      }
+      return out;
+    },
+    instanceColour: (i) => {
+      const c = new THREE.Color();
+      viewer.mesh.getColorAt(i, c);
+      return c.getHexString(THREE.SRGBColorSpace);
+    },
+    project: (i) => viewer.project(i),
+    logPoints: () => (plot.plot ? plot.plot.data[0].length : 0),
+    renderNow: () => viewer.render(),
+  };
+  window.pedesisReady = true;
+}
+
+function report(e) {
+  $('message').textContent = String(e.message || e);
+}
+
+main().catch(report);
