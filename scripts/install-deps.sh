@@ -13,7 +13,7 @@ packages=(
   python3-ase python3-vtk9 zlib1g-dev
   clang
   libopenmpi-dev openmpi-bin
-  libcpp-httplib-dev chromium
+  libcpp-httplib-dev libssl-dev chromium
 )
 # Node.js and npm build the viewer page (web/viewer); a machine that has them from
 # elsewhere (NodeSource) keeps them: Debian's npm would conflict with that nodejs.

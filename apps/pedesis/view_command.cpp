@@ -1,12 +1,14 @@
 #include "view_command.hpp"
 
 #include "pedesis/core/interrupt.hpp"
+#include "pedesis/view/export_page.hpp"
 #include "pedesis/view/view_server.hpp"
 
 #include <fmt/format.h>
 
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -19,6 +21,8 @@ struct ViewArgs {
     std::string host = "127.0.0.1";
     int port = 8765;
     bool open = false;
+    std::string export_to;
+    std::size_t every = 1;
 };
 
 bool is_loopback(const std::string& host) {
@@ -37,7 +41,25 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--host", a->host,
                     "Address to listen on (default 127.0.0.1: this machine only)");
     cmd->add_flag("--open", a->open, "Open the page in the default browser (xdg-open)");
+    auto* exporting = cmd->add_option(
+        "--export", a->export_to,
+        "Write one self-contained HTML file (page and frames inside, opens offline) and exit");
+    cmd->add_option("--every", a->every, "With --export: keep every k-th frame (and the last)")
+        ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+        ->needs(exporting);
     cmd->callback([a] {
+        if (!a->export_to.empty()) {
+            view::ExportOptions e;
+            e.run_dir = a->run_dir;
+            e.page_dir = PEDESIS_VIEWER_DIR;
+            e.output = a->export_to;
+            e.every = a->every;
+            view::export_page(e);
+            std::cout << fmt::format("pedesis view: wrote {} ({:.1f} MB)\n", a->export_to,
+                                     static_cast<double>(std::filesystem::file_size(a->export_to)) /
+                                         (1 << 20));
+            return;
+        }
         view::ViewOptions o;
         o.run_dir = a->run_dir;
         o.host = a->host;

@@ -196,6 +196,64 @@ async function checkBadRequests(dir) {
   }
 }
 
+// --export: one HTML file that opens from disk with every network request refused, and
+// shows the first and the last frame (here every second frame: 0, 2, 4 of 5).
+async function checkExport(browser, dir) {
+  const file = path.join(scratch, 'exported.html');
+  execFileSync(binary, ['view', dir, '--export', file, '--every', '2'], { stdio: 'ignore' });
+  const xyz = readXyz(path.join(dir, 'trajectory.xyz'));
+  const context = await browser.newContext({ viewport: { width: 1100, height: 700 } });
+  let refused = 0;
+  await context.route('**/*', (route) => {
+    if (route.request().url().startsWith('file:')) return route.continue();
+    refused += 1;
+    return route.abort();
+  });
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto('file://' + file);
+  await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+  check(await page.evaluate(() => window.pedesisView.frames()) === 3, 'export: holds frames 0, 2 and 4');
+  for (const [k, original] of [[0, 0], [2, xyz.length - 1]]) {
+    await page.evaluate((i) => window.pedesisView.setFrame(i), k);
+    const drawn = await page.evaluate(() => window.pedesisView.drawnPositions());
+    let worst = 0;
+    xyz[original].pos.forEach((p, i) => p.forEach((c, a) => { worst = Math.max(worst, Math.abs(drawn[i][a] - c)); }));
+    check(drawn.length === xyz[original].pos.length && worst < 1e-4,
+      `export: frame ${k} shows the run's frame ${original} (worst ${worst.toExponential(2)})`);
+  }
+  check(refused === 0 && errors.length === 0, `export: no network request (${refused}) and no error ${errors.join('; ')}`);
+  await context.close();
+}
+
+// A run still going: the server reads its ".part" files, and the frame count it reports
+// grows as the run writes frames (the page asks every 2 s).
+async function checkLive() {
+  const config = path.join(scratch, 'live.toml');
+  fs.writeFileSync(config, softConfig(2).replace('steps = 400', 'steps = 100000000')
+    .replace('snapshot_every = 100', 'snapshot_every = 2000'));
+  const dir = path.join(scratch, 'live');
+  const run = spawn(binary, ['run', config, '--out', dir], { stdio: 'ignore',
+    env: { ...process.env, OMP_NUM_THREADS: '1' } });
+  try {
+    await new Promise((done) => setTimeout(done, 1500));
+    const { server, url } = await startServer(dir);
+    try {
+      const first = (await (await fetch(url + 'api/info')).json()).frames;
+      await new Promise((done) => setTimeout(done, 2500));
+      const later = (await (await fetch(url + 'api/info')).json()).frames;
+      const log = await (await fetch(url + 'api/log')).json();
+      check(first >= 1 && later > first && log.rows.length > 0,
+        `live: a running run's frames grow from ${first} to ${later}; its log has ${log.rows.length} rows`);
+    } finally {
+      server.kill('SIGINT');
+    }
+  } finally {
+    run.kill('SIGTERM');
+  }
+}
+
 async function main() {
   if (!fs.existsSync(CHROMIUM)) throw new Error(`${CHROMIUM} is missing: install Debian's chromium (make deps)`);
   const runs = [
@@ -215,10 +273,12 @@ async function main() {
   try {
     for (const [name, dimension] of runs)
       await checkRun(browser, name, dimension, path.join(scratch, name.replace(' ', '_')));
+    await checkExport(browser, path.join(scratch, 'soft_2D'));
   } finally {
     await browser.close();
   }
   await checkBadRequests(path.join(scratch, 'soft_2D'));
+  await checkLive();
   console.log(failures ? `${failures} check(s) failed` : 'all checks passed');
   process.exit(failures ? 1 : 0);
 }

@@ -30,13 +30,32 @@ std::string vectors(const std::vector<render::Vec3>& v) {
 
 } // namespace
 
+namespace {
+constexpr Field every_field[] = {Field::position, Field::radius, Field::species,
+                                 Field::speed,    Field::angle,  Field::director};
+}
+
+std::string_view field_name(Field field) {
+    switch (field) {
+    case Field::position:
+        return "position";
+    case Field::radius:
+        return "radius";
+    case Field::species:
+        return "species";
+    case Field::speed:
+        return "speed";
+    case Field::angle:
+        return "angle";
+    case Field::director:
+        return "director";
+    }
+    return "";
+}
+
 std::optional<Field> field_named(std::string_view name) {
-    if (name == "position") return Field::position;
-    if (name == "radius") return Field::radius;
-    if (name == "species") return Field::species;
-    if (name == "speed") return Field::speed;
-    if (name == "angle") return Field::angle;
-    if (name == "director") return Field::director;
+    for (const Field f : every_field)
+        if (field_name(f) == name) return f;
     return std::nullopt;
 }
 

@@ -17,6 +17,9 @@ enum class Field { position, radius, species, speed, angle, director };
 // "director"), or none.
 std::optional<Field> field_named(std::string_view name);
 
+// The name of the field, as field_named reads it.
+std::string_view field_name(Field field);
+
 // Whether the frame has what the field is made of (speed needs velocities; angle and
 // director need directors).
 bool frame_has(const render::Frame& frame, Field field);

@@ -3,6 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/render/run_directory.hpp"
 #include "pedesis/view/frame_arrays.hpp"
+#include "pedesis/view/run_data.hpp"
 
 #include <fmt/format.h>
 #include <httplib.h>
@@ -28,34 +29,6 @@ void send_error(httplib::Response& res, int status, const std::string& message) 
     res.set_content(nlohmann::json{{"error", message}}.dump(), "application/json");
 }
 
-// log.csv as columns and rows of numbers ("inf" and "nan", which pandas writes and reads,
-// become null: JSON has no such numbers).
-nlohmann::json read_log(const std::filesystem::path& file) {
-    nlohmann::json out = {{"columns", nlohmann::json::array()}, {"rows", nlohmann::json::array()}};
-    std::ifstream in(file);
-    if (!in) return out;
-    std::string line, cell;
-    if (!std::getline(in, line)) return out;
-    std::istringstream header(line);
-    while (std::getline(header, cell, ',')) out["columns"].push_back(cell);
-    const std::size_t columns = out["columns"].size();
-    while (std::getline(in, line)) {
-        std::istringstream row(line);
-        nlohmann::json values = nlohmann::json::array();
-        while (std::getline(row, cell, ',')) {
-            char* end = nullptr;
-            const double v = std::strtod(cell.c_str(), &end);
-            if (end == cell.c_str() || !std::isfinite(v))
-                values.push_back(nullptr);
-            else
-                values.push_back(v);
-        }
-        // a row being written (no newline yet, or cut short) is left for the next request
-        if (values.size() == columns && !in.eof()) out["rows"].push_back(std::move(values));
-    }
-    return out;
-}
-
 } // namespace
 
 struct ViewServer::Impl {
@@ -74,31 +47,18 @@ struct ViewServer::Impl {
         return cache.back().second;
     }
 
+    // A run still going adds frames (and commits its ".part" file under the final name
+    // at the end): the page asks for the description every two seconds, and the run
+    // directory is opened anew each time, so that new frames show.
     nlohmann::json info() {
-        const render::Frame& f = frame(0);
-        nlohmann::json species = nlohmann::json::array();
-        for (std::size_t s = 0; s < f.species_names.size(); ++s) {
-            double radius = 0.0;
-            for (std::size_t i = 0; i < f.size(); ++i)
-                if (f.species[i] == s) {
-                    radius = f.radius[i];
-                    break;
-                }
-            species.push_back({{"name", f.species_names[s]}, {"radius", radius}});
+        render::OpenedRun run =
+            render::open_run_directory(options.run_dir, render::SourceKind::automatic);
+        if (run.source->frames() != source->frames() ||
+            run.source->description() != source->description()) {
+            source = std::move(run.source);
+            cache.clear();
         }
-        nlohmann::json fields = {"position", "radius", "species"};
-        if (frame_has(f, Field::speed)) fields.push_back("speed");
-        if (frame_has(f, Field::director)) fields.insert(fields.end(), {"angle", "director"});
-        return {{"run", std::filesystem::absolute(options.run_dir).filename().string()},
-                {"source", source->description()},
-                {"dimension", f.dimension},
-                {"box_lo", f.box_lo},
-                {"box_length", f.box_length},
-                {"periodic", f.periodic},
-                {"frames", source->frames()},
-                {"particles", f.size()},
-                {"species", species},
-                {"fields", fields}};
+        return run_info(*source, frame(0), options.run_dir);
     }
 
     void routes() {
@@ -106,12 +66,12 @@ struct ViewServer::Impl {
             std::lock_guard lock(mutex);
             try {
                 res.set_content(info().dump(), "application/json");
-            } catch (const std::exception& e) {
-                send_error(res, 500, e.what());
+            } catch (const InputError& e) {
+                send_error(res, 422, e.what());
             }
         });
         server.Get("/api/log", [this](const httplib::Request&, httplib::Response& res) {
-            res.set_content(read_log(options.run_dir / "log.csv").dump(), "application/json");
+            res.set_content(read_log(options.run_dir).dump(), "application/json");
         });
         server.Get(R"(/api/frame/(\d{1,18})/(\w+))",
                    [this](const httplib::Request& req, httplib::Response& res) {

@@ -18,7 +18,29 @@ const PALETTE = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b
 // viridis at 0, 1/4, 1/2, 3/4, 1
 const VIRIDIS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
 
+// An exported page (pedesis view --export) carries the run inside: the same answers as
+// the server's, from window.PEDESIS_EXPORT instead of HTTP.
+const EXPORTED = window.PEDESIS_EXPORT || null;
+
+function fromBase64(text, Type) {
+  const binary = atob(text);
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+  return new Type(bytes.buffer);
+}
+
+function exported(path, Type) {
+  if (path === 'api/info') return EXPORTED.info;
+  if (path === 'api/log') return EXPORTED.log;
+  const m = path.match(/^api\/frame\/(\d+)\/(\w+)$/);
+  const f = m ? EXPORTED.frames[Number(m[1])] : null;
+  if (!f || !f[m[2]]) throw new Error(`${path}: not in this exported page`);
+  return { data: fromBase64(f[m[2]], Type), time: f.time === null ? '' : String(f.time),
+    step: f.step === null ? '' : String(f.step) };
+}
+
 async function fetchJson(path) {
+  if (EXPORTED) return exported(path);
   const r = await fetch(path);
   const body = await r.json();
   if (!r.ok) throw new Error(body.error || r.statusText);
@@ -26,6 +48,7 @@ async function fetchJson(path) {
 }
 
 async function fetchArray(path, Type) {
+  if (EXPORTED) return exported(path, Type);
   const r = await fetch(path);
   if (!r.ok) {
     const body = await r.json().catch(() => ({}));
@@ -392,7 +415,7 @@ async function main() {
   await viewer.show(0);
   await plot.refresh();
   // a run still going writes more frames and rows: look again now and then
-  setInterval(async () => {
+  if (!EXPORTED) setInterval(async () => {
     try {
       const now = await fetchJson('api/info');
       if (now.frames !== viewer.frames) {
