@@ -7,16 +7,19 @@
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run.hpp"
 #include "pedesis/setup/run_config.hpp"
+#include "pedesis/view/view_server.hpp"
 #include "thread_choice.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 namespace pedesis::cli {
 
@@ -27,6 +30,34 @@ struct RunArgs {
     std::string restart;
     bool list_quantities = false;
     int threads = 0; // 0: choose (thread_choice.hpp)
+    bool view = false;
+    int view_port = 8765;
+};
+
+// `pedesis run --view`: the viewer's server on the run directory, in a thread of its own
+// for as long as this lives.
+class LiveView {
+  public:
+    LiveView(const std::filesystem::path& dir, int port) {
+        view::ViewOptions o;
+        o.run_dir = dir;
+        o.port = port;
+        o.page_dir = PEDESIS_VIEWER_DIR;
+        o.wait_for_frames = true;
+        server_ = std::make_unique<view::ViewServer>(o);
+        serving_ = std::thread([this] { server_->serve(); });
+    }
+    ~LiveView() {
+        server_->stop();
+        serving_.join();
+    }
+    LiveView(const LiveView&) = delete;
+    LiveView& operator=(const LiveView&) = delete;
+    std::string url() const { return server_->url(); }
+
+  private:
+    std::unique_ptr<view::ViewServer> server_;
+    std::thread serving_;
 };
 
 // One line per quantity: name, unit, engines, meaning.
@@ -55,6 +86,11 @@ void add_run_command(CLI::App& app) {
     cmd->add_option("--out", a->out, "Run directory (default: runs/<config name>)");
     cmd->add_option("--restart", a->restart,
                     "Continue exactly from a checkpoint.bin of an earlier run");
+    cmd->add_flag("--view", a->view,
+                  "Serve the run in the browser while it goes, and after it until Ctrl-C "
+                  "(pedesis view; docs/view.md)");
+    cmd->add_option("--view-port", a->view_port, "Port of --view (0: any free port)")
+        ->check(CLI::Range(0, 65535));
     cmd->callback([a] {
         if (a->list_quantities) {
             print_quantities(std::cout);
@@ -91,7 +127,20 @@ void add_run_command(CLI::App& app) {
         InterruptGuard guard;
         const std::unique_ptr<Run> run = make_run(config, o, console);
         if (guard.signal() != 0) guard.reraise(); // nothing is written yet
+        std::unique_ptr<LiveView> live;
+        if (a->view && (!comm || comm->rank() == 0)) {
+            live = std::make_unique<LiveView>(o.out_dir, a->view_port);
+            console << fmt::format("pedesis: watch the run at {}\n", live->url()) << std::flush;
+        }
         run->run();
+        if (live && guard.signal() == 0) {
+            console << fmt::format("pedesis: the run is done; {} still shows it until Ctrl-C\n",
+                                   live->url())
+                    << std::flush;
+            while (!interrupt_requested())
+                std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            return;
+        }
         if (guard.signal() != 0) {
             console << fmt::format(
                 "pedesis: interrupted by signal {} ({}) at step {} (t = {:.6g}); the run "

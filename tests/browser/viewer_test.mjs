@@ -227,30 +227,37 @@ async function checkExport(browser, dir) {
   await context.close();
 }
 
-// A run still going: the server reads its ".part" files, and the frame count it reports
-// grows as the run writes frames (the page asks every 2 s).
-async function checkLive() {
+// A run still going, served by itself (`pedesis run --view`): the server reads its
+// ".part" files, the page waits for the first frame, and the frame count the server
+// reports grows as the run writes frames (the page asks every 2 s).
+async function checkLive(browser) {
   const config = path.join(scratch, 'live.toml');
   fs.writeFileSync(config, softConfig(2).replace('steps = 400', 'steps = 100000000')
-    .replace('snapshot_every = 100', 'snapshot_every = 2000'));
-  const dir = path.join(scratch, 'live');
-  const run = spawn(binary, ['run', config, '--out', dir], { stdio: 'ignore',
-    env: { ...process.env, OMP_NUM_THREADS: '1' } });
+    .replace('snapshot_every = 100', 'snapshot_every = 2000').replace('log_every = 20', 'log_every = 500'));
+  const run = spawn(binary, ['run', config, '--out', path.join(scratch, 'live'), '--view', '--view-port', '0'],
+    { stdio: ['ignore', 'pipe', 'inherit'], env: { ...process.env, OMP_NUM_THREADS: '1' } });
   try {
-    await new Promise((done) => setTimeout(done, 1500));
-    const { server, url } = await startServer(dir);
-    try {
-      const first = (await (await fetch(url + 'api/info')).json()).frames;
-      await new Promise((done) => setTimeout(done, 2500));
-      const later = (await (await fetch(url + 'api/info')).json()).frames;
-      const log = await (await fetch(url + 'api/log')).json();
-      check(first >= 1 && later > first && log.rows.length > 0,
-        `live: a running run's frames grow from ${first} to ${later}; its log has ${log.rows.length} rows`);
-    } finally {
-      server.kill('SIGINT');
-    }
+    const url = await new Promise((resolve, reject) => {
+      let out = '';
+      run.stdout.on('data', (d) => {
+        out += d;
+        const m = out.match(/watch the run at (http:\/\/127\.0\.0\.1:\d+\/)/);
+        if (m) resolve(m[1]);
+      });
+      run.on('exit', (code) => reject(new Error(`pedesis run --view exited (${code}): ${out}`)));
+    });
+    const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    await page.goto(url);
+    await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+    const first = await page.evaluate(() => window.pedesisView.frames());
+    await new Promise((done) => setTimeout(done, 4500));
+    const later = await page.evaluate(() => window.pedesisView.frames());
+    const log = await (await fetch(url + 'api/log')).json();
+    check(first >= 1 && later > first && log.rows.length > 0,
+      `live (run --view): the page's frame count grows from ${first} to ${later}; the log has ${log.rows.length} rows`);
+    await page.close();
   } finally {
-    run.kill('SIGTERM');
+    run.kill('SIGINT');
   }
 }
 
@@ -274,11 +281,11 @@ async function main() {
     for (const [name, dimension] of runs)
       await checkRun(browser, name, dimension, path.join(scratch, name.replace(' ', '_')));
     await checkExport(browser, path.join(scratch, 'soft_2D'));
+    await checkLive(browser);
   } finally {
     await browser.close();
   }
   await checkBadRequests(path.join(scratch, 'soft_2D'));
-  await checkLive();
   console.log(failures ? `${failures} check(s) failed` : 'all checks passed');
   process.exit(failures ? 1 : 0);
 }

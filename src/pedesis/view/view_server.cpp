@@ -51,9 +51,17 @@ struct ViewServer::Impl {
     // at the end): the page asks for the description every two seconds, and the run
     // directory is opened anew each time, so that new frames show.
     nlohmann::json info() {
-        render::OpenedRun run =
-            render::open_run_directory(options.run_dir, render::SourceKind::automatic);
-        if (run.source->frames() != source->frames() ||
+        render::OpenedRun run;
+        try {
+            run = render::open_run_directory(options.run_dir, render::SourceKind::automatic);
+        } catch (const InputError& e) {
+            // caught mid-write (a frame half written): what was read before stands
+            if (source) return run_info(*source, frame(0), options.run_dir);
+            if (!options.wait_for_frames) throw;
+            // a run that has not written its first frame yet
+            return {{"frames", 0}, {"waiting", e.what()}};
+        }
+        if (!source || run.source->frames() != source->frames() ||
             run.source->description() != source->description()) {
             source = std::move(run.source);
             cache.clear();
@@ -99,10 +107,10 @@ struct ViewServer::Impl {
         std::lock_guard lock(mutex);
         try {
             // a trajectory still being written grows: ask the file, not a count from before
-            if (k >= source->frames())
+            if (!source || k >= source->frames())
                 return send_error(res, 404,
                                   fmt::format("frame {} is past the end: the run has {} frames", k,
-                                              source->frames()));
+                                              source ? source->frames() : 0));
             const render::Frame& f = frame(k);
             if (!frame_has(f, *field))
                 return send_error(res, 404,
@@ -120,9 +128,9 @@ struct ViewServer::Impl {
 
 ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl>()) {
     impl_->options = options;
-    render::OpenedRun run =
-        render::open_run_directory(options.run_dir, render::SourceKind::automatic);
-    impl_->source = std::move(run.source);
+    if (!options.wait_for_frames)
+        impl_->source =
+            render::open_run_directory(options.run_dir, render::SourceKind::automatic).source;
     impl_->routes();
     impl_->port =
         options.port == 0

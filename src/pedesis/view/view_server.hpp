@@ -21,6 +21,9 @@ struct ViewOptions {
     std::string host = "127.0.0.1";
     int port = 8765;                // 0: any free port
     std::filesystem::path page_dir; // the built page
+    // Serve a run directory that has no trajectory yet (`pedesis run --view`): the page
+    // waits for the first frame. Otherwise a directory without one is an InputError.
+    bool wait_for_frames = false;
 };
 
 class ViewServer {

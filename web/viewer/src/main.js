@@ -1,5 +1,6 @@
 // The page of `pedesis view` (docs/view.md): a run's particles drawn with three.js
-// (one instanced mesh: a disk or sphere per particle at its true radius), a time slider
+// (one point sprite per particle, a disk or a shaded sphere at its true radius: one
+// vertex a particle, so that 10^6 draw in software WebGL), a time slider
 // and playback over the frames, colour by species, speed or polarity angle, director
 // arrows, and the run's log plotted with uPlot beside it, with a cursor at the frame's
 // time. Frames come from the server as binary typed arrays (src/pedesis/view), and only
@@ -84,7 +85,7 @@ class Viewer {
     this.wanted = 0; // the last frame asked for: a slower answer for another is dropped
 
     const view = $('view');
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(window.devicePixelRatio);
     this.renderer.setClearColor(0xffffff);
     view.prepend(this.renderer.domElement);
@@ -100,11 +101,6 @@ class Viewer {
       const size = Math.max(L[0], L[1], L[2]);
       this.camera = new THREE.PerspectiveCamera(40, 1, size / 100, size * 20);
       this.camera.position.copy(this.centre).add(new THREE.Vector3(1.2, 0.9, 1.6).multiplyScalar(size));
-      this.scene.add(new THREE.AmbientLight(0xffffff, 1.2));
-      const sun = new THREE.DirectionalLight(0xffffff, 2.0);
-      sun.position.set(1, 2, 3);
-      this.camera.add(sun);
-      this.scene.add(this.camera);
     }
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.target.copy(this.centre);
@@ -139,20 +135,61 @@ class Viewer {
     return box;
   }
 
-  // One instance per particle; the mesh grows when a frame holds more particles.
+  // One point per particle, drawn as a disk (2D) or a shaded sphere (3D) of its radius in
+  // world units; the buffers grow when a frame holds more particles. Colours are sRGB
+  // values written as they are (the shader does no colour-space conversion).
   ensureCapacity(n) {
     if (n <= this.capacity) return;
     if (this.mesh) this.scene.remove(this.mesh);
-    const geometry = this.dim === 2 ? new THREE.CircleGeometry(1, 24)
-      : new THREE.SphereGeometry(1, 16, 12);
-    const material = this.dim === 2 ? new THREE.MeshBasicMaterial()
-      : new THREE.MeshLambertMaterial();
-    this.mesh = new THREE.InstancedMesh(geometry, material, n);
-    this.mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
-    this.mesh.setColorAt(0, new THREE.Color());
+    const geometry = new THREE.BufferGeometry();
+    for (const [name, size] of [['position', 3], ['radius', 1], ['tint', 3]]) {
+      const attribute = new THREE.BufferAttribute(new Float32Array(size * n), size);
+      attribute.setUsage(THREE.DynamicDrawUsage);
+      geometry.setAttribute(name, attribute);
+    }
+    const material = new THREE.ShaderMaterial({
+      uniforms: { pixelsPerUnit: { value: 1 }, perspective: { value: this.dim === 3 },
+        shaded: { value: this.dim === 3 } },
+      vertexShader: `
+        attribute float radius;
+        attribute vec3 tint;
+        uniform float pixelsPerUnit;
+        uniform bool perspective;
+        varying vec3 vTint;
+        void main() {
+          vec4 mv = modelViewMatrix * vec4(position, 1.0);
+          gl_Position = projectionMatrix * mv;
+          gl_PointSize = max(2.0 * radius * (perspective ? pixelsPerUnit / -mv.z : pixelsPerUnit), 1.0);
+          vTint = tint;
+        }`,
+      fragmentShader: `
+        uniform bool shaded;
+        varying vec3 vTint;
+        void main() {
+          vec2 p = 2.0 * gl_PointCoord - 1.0;
+          float r2 = dot(p, p);
+          if (r2 > 1.0) discard;
+          vec3 c = vTint;
+          if (shaded) {
+            vec3 normal = vec3(p.x, -p.y, sqrt(1.0 - r2));
+            c *= 0.35 + 0.65 * max(dot(normal, normalize(vec3(0.4, 0.6, 1.0))), 0.0);
+          }
+          gl_FragColor = vec4(c, 1.0);
+        }`,
+    });
+    this.mesh = new THREE.Points(geometry, material);
     this.mesh.frustumCulled = false;
     this.scene.add(this.mesh);
     this.capacity = n;
+  }
+
+  // Point sizes follow the zoom: pixels per world unit at the target's distance.
+  updatePointScale() {
+    if (!this.mesh) return;
+    const height = this.renderer.getDrawingBufferSize(new THREE.Vector2()).y;
+    this.mesh.material.uniforms.pixelsPerUnit.value = this.dim === 2
+      ? (height * this.camera.zoom) / (this.camera.top - this.camera.bottom)
+      : (this.camera.projectionMatrix.elements[5] * height) / 2;
   }
 
   resize() {
@@ -180,6 +217,7 @@ class Viewer {
 
   render() {
     this.controls.update();
+    this.updatePointScale();
     this.renderer.render(this.scene, this.camera);
   }
 
@@ -227,7 +265,7 @@ class Viewer {
   draw(f) {
     const n = f.species.length;
     this.ensureCapacity(n);
-    const m = new THREE.Matrix4(), c = new THREE.Color();
+    const c = new THREE.Color(), rgb = {};
     const field = this.needsField() ? f.fields[this.needsField()] : null;
     let lo = 0, hi = 1;
     if (this.mode === 'speed') {
@@ -235,18 +273,21 @@ class Viewer {
       for (let i = 0; i < n; ++i) hi = Math.max(hi, field[i]);
       hi = hi || 1;
     }
+    const g = this.mesh.geometry;
+    g.attributes.position.array.set(f.pos.subarray(0, 3 * n));
+    g.attributes.radius.array.set(f.radius.subarray(0, n));
+    const tint = g.attributes.tint.array;
     for (let i = 0; i < n; ++i) {
-      const r = f.radius[i];
-      m.makeScale(r, r, r).setPosition(f.pos[3 * i], f.pos[3 * i + 1], f.pos[3 * i + 2]);
-      this.mesh.setMatrixAt(i, m);
       if (this.mode === 'speed') viridis((field[i] - lo) / (hi - lo), c);
       else if (this.mode === 'angle') wheel(field[i], c);
       else c.setStyle(PALETTE[f.species[i] % PALETTE.length], THREE.SRGBColorSpace);
-      this.mesh.setColorAt(i, c);
+      c.getRGB(rgb, THREE.SRGBColorSpace);
+      tint[3 * i] = rgb.r;
+      tint[3 * i + 1] = rgb.g;
+      tint[3 * i + 2] = rgb.b;
     }
-    this.mesh.count = n;
-    this.mesh.instanceMatrix.needsUpdate = true;
-    this.mesh.instanceColor.needsUpdate = true;
+    g.setDrawRange(0, n);
+    for (const name of ['position', 'radius', 'tint']) g.attributes[name].needsUpdate = true;
     this.drawArrows(f, n);
     this.colourBar(lo, hi);
     this.requestRender();
@@ -317,9 +358,8 @@ class Viewer {
 
   // The CSS-pixel position of particle i's centre in the page (for tests).
   project(i) {
-    const m = new THREE.Matrix4();
-    this.mesh.getMatrixAt(i, m);
-    const p = new THREE.Vector3().setFromMatrixPosition(m).project(this.camera);
+    const p = new THREE.Vector3().fromBufferAttribute(this.mesh.geometry.attributes.position, i)
+      .project(this.camera);
     const rect = this.renderer.domElement.getBoundingClientRect();
     return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
   }
@@ -382,7 +422,14 @@ class LogPlot {
 }
 
 async function main() {
-  const info = await fetchJson('api/info');
+  let info = await fetchJson('api/info');
+  // a run started with --view may not have written its first frame yet
+  while (info.frames === 0) {
+    $('message').textContent = 'waiting for the run\'s first frame…';
+    await new Promise((done) => setTimeout(done, 1000));
+    info = await fetchJson('api/info');
+  }
+  $('message').textContent = '';
   document.title = `pedesis view: ${info.run}`;
   $('title').textContent = `${info.run} (${info.dimension}D, N = ${info.particles})`;
   const viewer = new Viewer(info);
@@ -429,25 +476,42 @@ async function main() {
   // What the tests read back (tests/browser): the page's state, not its pixels alone.
   window.pedesisView = {
     info, frames: () => viewer.frames, frameIndex: () => viewer.index,
-    instanceCount: () => viewer.mesh.count,
+    instanceCount: () => viewer.mesh.geometry.drawRange.count,
     setFrame: (k) => viewer.show(k), setColour: (m) => viewer.setColour(m),
     drawnPositions: () => {
-      const m = new THREE.Matrix4(), p = new THREE.Vector3(), out = [];
-      for (let i = 0; i < viewer.mesh.count; ++i) {
-        viewer.mesh.getMatrixAt(i, m);
-        p.setFromMatrixPosition(m);
-        out.push([p.x, p.y, p.z]);
-      }
+      const a = viewer.mesh.geometry.attributes.position.array, out = [];
+      for (let i = 0; i < viewer.mesh.geometry.drawRange.count; ++i) out.push([a[3 * i], a[3 * i + 1], a[3 * i + 2]]);
       return out;
     },
     instanceColour: (i) => {
-      const c = new THREE.Color();
-      viewer.mesh.getColorAt(i, c);
-      return c.getHexString(THREE.SRGBColorSpace);
+      const t = viewer.mesh.geometry.attributes.tint.array;
+      return new THREE.Color().setRGB(t[3 * i], t[3 * i + 1], t[3 * i + 2], THREE.SRGBColorSpace)
+        .getHexString(THREE.SRGBColorSpace);
     },
     project: (i) => viewer.project(i),
     logPoints: () => (plot.plot ? plot.plot.data[0].length : 0),
     renderNow: () => viewer.render(),
+    // For scripts/bench_viewer.mjs: milliseconds per drawn frame over `count` redraws with
+    // the camera moving (each waits for its pixels), and per scrub to frame k (fetch,
+    // decode, upload, draw).
+    benchRender: (count) => {
+      const gl = viewer.renderer.getContext(), px = new Uint8Array(4);
+      const t0 = performance.now();
+      for (let k = 0; k < count; ++k) {
+        viewer.camera.position.x += 1e-3 * viewer.info.box_length[0];
+        viewer.renderer.render(viewer.scene, viewer.camera);
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      }
+      return (performance.now() - t0) / count;
+    },
+    benchShow: async (k) => {
+      const gl = viewer.renderer.getContext(), px = new Uint8Array(4);
+      const t0 = performance.now();
+      await viewer.show(k);
+      viewer.render();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      return performance.now() - t0;
+    },
   };
   window.pedesisReady = true;
 }
