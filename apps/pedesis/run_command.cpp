@@ -6,6 +6,7 @@
 #include "pedesis/core/interrupt.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run.hpp"
+#include "pedesis/run/steering.hpp"
 #include "pedesis/setup/run_config.hpp"
 #include "pedesis/view/view_server.hpp"
 #include "thread_choice.hpp"
@@ -18,6 +19,7 @@
 #include <cstring>
 #include <iostream>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -32,18 +34,33 @@ struct RunArgs {
     int threads = 0; // 0: choose (thread_choice.hpp)
     bool view = false;
     int view_port = 8765;
+    std::string steering; // a record to replay
 };
+
+// 128 random bits, in hex: the token a page must show to change a run.
+std::string random_token() {
+    std::random_device device;
+    std::string token;
+    for (int k = 0; k < 4; ++k) token += fmt::format("{:08x}", device());
+    return token;
+}
 
 // `pedesis run --view`: the viewer's server on the run directory, in a thread of its own
 // for as long as this lives.
 class LiveView {
   public:
-    LiveView(const std::filesystem::path& dir, int port) {
+    LiveView(const std::filesystem::path& dir, int port, SteeringDesk* desk) {
         view::ViewOptions o;
         o.run_dir = dir;
         o.port = port;
         o.page_dir = PEDESIS_VIEWER_DIR;
         o.wait_for_frames = true;
+        if (desk) {
+            token_ = random_token();
+            o.steering = view::SteeringHooks{
+                token_, [desk] { return desk->parameters(); },
+                [desk](const std::string& p, double v) { return desk->request(p, v); }};
+        }
         server_ = std::make_unique<view::ViewServer>(o);
         serving_ = std::thread([this] { server_->serve(); });
     }
@@ -53,9 +70,11 @@ class LiveView {
     }
     LiveView(const LiveView&) = delete;
     LiveView& operator=(const LiveView&) = delete;
-    std::string url() const { return server_->url(); }
+    // with the token when the page may change the run
+    std::string url() const { return server_->url() + (token_.empty() ? "" : "?token=" + token_); }
 
   private:
+    std::string token_;
     std::unique_ptr<view::ViewServer> server_;
     std::thread serving_;
 };
@@ -91,6 +110,8 @@ void add_run_command(CLI::App& app) {
                   "(pedesis view; docs/view.md)");
     cmd->add_option("--view-port", a->view_port, "Port of --view (0: any free port)")
         ->check(CLI::Range(0, 65535));
+    cmd->add_option("--steering", a->steering,
+                    "Replay a steering.csv: apply its changes at their steps (docs/view.md)");
     cmd->callback([a] {
         if (a->list_quantities) {
             print_quantities(std::cout);
@@ -127,9 +148,23 @@ void add_run_command(CLI::App& app) {
         InterruptGuard guard;
         const std::unique_ptr<Run> run = make_run(config, o, console);
         if (guard.signal() != 0) guard.reraise(); // nothing is written yet
+        // Changes from the page (--view) and from a record (--steering) go through one
+        // desk, applied between steps and recorded in the run directory. Under MPI the
+        // page only watches: a change reaching process 0 alone would split the run.
+        std::unique_ptr<SteeringDesk> desk;
+        const bool live_changes = a->view && !comm;
+        if (live_changes || !a->steering.empty()) {
+            std::vector<SteeringChange> replay;
+            if (!a->steering.empty()) replay = read_steering(a->steering);
+            desk = std::make_unique<SteeringDesk>(
+                *run, !comm || comm->rank() == 0 ? o.out_dir / "steering.csv" : "",
+                std::move(replay));
+            run->add_operation(Trigger::every_steps(1), [d = desk.get()] { d->apply_due(); });
+        }
         std::unique_ptr<LiveView> live;
         if (a->view && (!comm || comm->rank() == 0)) {
-            live = std::make_unique<LiveView>(o.out_dir, a->view_port);
+            live = std::make_unique<LiveView>(o.out_dir, a->view_port,
+                                              live_changes ? desk.get() : nullptr);
             console << fmt::format("pedesis: watch the run at {}\n", live->url()) << std::flush;
         }
         run->run();
@@ -148,6 +183,8 @@ void add_run_command(CLI::App& app) {
                 guard.signal(), strsignal(guard.signal()), run->step(), run->time(),
                 (o.out_dir / "checkpoint.bin").string());
             console.flush();
+            live.reset();
+            desk.reset(); // its record, under its final name, before the signal ends us
             guard.reraise();
         }
     });

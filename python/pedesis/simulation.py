@@ -107,6 +107,18 @@ class Simulation:
             self._run.close("")
         return why
 
+    def set(self, parameter, value):
+        """Changes a parameter of the running simulation from the next step on, as the
+        sliders of `pedesis run --view` do: "temperature" (of the position integrator,
+        every species), "alpha" (self-propulsion) or "J" (polar alignment); see
+        `steerable`. The change is recorded in the run directory's steering.csv, so that
+        `pedesis run CONFIG --steering steering.csv` reproduces the run bit for bit.
+        Raises ValueError for an unknown parameter or a bad value."""
+        self._run.set(parameter, float(value))
+
+    steerable = property(lambda self: self._run.steerable,
+                         doc="what set() can change, with the current values")
+
     def close(self):
         """Writes the end of the run (last frame, checkpoint, summary) if not done yet."""
         if not self._run.closed:

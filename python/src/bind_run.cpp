@@ -5,6 +5,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/run/run.hpp"
+#include "pedesis/run/steering.hpp"
 #include "pedesis/setup/run_config.hpp"
 
 #include <pybind11/functional.h>
@@ -36,6 +37,8 @@ struct PyRun {
     std::unique_ptr<std::ostream> null_stream;
     std::unique_ptr<Run> run;
     std::string config_path;
+    std::filesystem::path out;
+    std::unique_ptr<SteeringDesk> desk; // from the first set(), before run (destroyed first)
 };
 
 Trigger make_trigger(std::optional<std::uint64_t> steps, std::optional<double> time,
@@ -100,6 +103,7 @@ void bind_run(py::module_& m) {
                  if (restart) require_file(*restart, "Simulation.from_file: restart");
                  auto r = std::make_unique<PyRun>();
                  r->config_path = config.string();
+                 r->out = out;
                  const RunConfig c = load_run_config(config.string());
                  RunOptions o;
                  o.config_path = config;
@@ -151,8 +155,35 @@ void bind_run(py::module_& m) {
             },
             py::arg("steps") = py::none(), py::arg("time") = py::none())
         .def(
-            "close", [](PyRun& r, const std::string& ended_by) { r.run->close(ended_by.c_str()); },
+            "close",
+            [](PyRun& r, const std::string& ended_by) {
+                r.run->close(ended_by.c_str());
+                r.desk.reset(); // the record, under its final name
+            },
             py::arg("ended_by"))
+        .def(
+            "set",
+            [](PyRun& r, const std::string& parameter, double value) {
+                if (r.run->closed()) throw InputError("Simulation.set: the run is closed");
+                // the change applies between two steps, now, and is recorded as a change
+                // from the page of `pedesis run --view` is (run/steering.hpp)
+                if (!r.desk)
+                    r.desk = std::make_unique<SteeringDesk>(
+                        *r.run, r.out.empty() ? r.out : r.out / "steering.csv",
+                        std::vector<SteeringChange>{});
+                const std::string refused = r.desk->request(parameter, value);
+                if (!refused.empty()) throw InputError("Simulation.set: " + refused);
+                r.run->advance(r.run->step()); // opens the run directory if not yet
+                r.desk->apply_due();
+            },
+            py::arg("parameter"), py::arg("value"))
+        .def_property_readonly("steerable",
+                               [](const PyRun& r) {
+                                   py::dict d;
+                                   for (const auto& [name, value] : r.run->steerable())
+                                       d[py::str(name)] = value;
+                                   return d;
+                               })
         .def(
             "add_callback",
             [](PyRun& r, py::function fn, std::optional<std::uint64_t> steps,

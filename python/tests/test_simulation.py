@@ -166,3 +166,35 @@ def test_frame_and_errors(tmp_path):
         sim.writers.append("trajectory.gsd")
     with pytest.raises(FileNotFoundError):
         pedesis.Simulation.from_file(tmp_path / "missing.toml")
+
+
+def test_set_changes_the_run_and_the_record_replays_it_in_the_cli(tmp_path, run_cli):
+    # a Langevin run (gamma = 1, m = 1) whose bath temperature is raised fourfold at step
+    # 200 (t = 1): two relaxation times later the kinetic temperature of the 60 disks is
+    # near 4 T0 (each row fluctuates by ~13 %, so 3-5 T0 over the last rows separates it
+    # clearly from T0), and the CLI replaying steering.csv writes the same files byte
+    # for byte (the change applies between the same two steps)
+    cfg = write(tmp_path, "soft", CONFIGS["soft"])
+    sim = pedesis.Simulation.from_file(cfg, out=tmp_path / "py")
+    assert set(sim.steerable) == {"temperature", "alpha"}
+    t0 = sim.steerable["temperature"]
+    assert sim.run(steps=200) is None
+    sim.set("temperature", 4 * t0)
+    assert sim.steerable["temperature"] == 4 * t0
+    with pytest.raises(ValueError, match="unknown parameter 'J'"):
+        sim.set("J", 1.0)
+    with pytest.raises(ValueError, match="temperature must be >= 0"):
+        sim.set("temperature", -1.0)
+    assert sim.run() == "steps"
+    record = (tmp_path / "py" / "steering.csv").read_text().splitlines()
+    assert record[0] == "step,time,parameter,value"
+    assert record[1].startswith("200,") and record[1].endswith(",temperature," + repr(4 * t0))
+    rows = (tmp_path / "py" / "log.csv").read_text().splitlines()
+    header = rows[0].split(",")
+    temperature = [float(r.split(",")[header.index("temperature")]) for r in rows[1:]]
+    steps = [int(r.split(",")[0]) for r in rows[1:]]
+    late = [t for s, t in zip(steps, temperature) if s >= 450]
+    assert 3 * t0 < sum(late) / len(late) < 5 * t0
+    run_cli("run", cfg, "--out", tmp_path / "cli", "--steering", tmp_path / "py" / "steering.csv")
+    for f in ("log.csv", "checkpoint.bin", "trajectory.gsd", "steering.csv"):
+        assert (tmp_path / "cli" / f).read_bytes() == (tmp_path / "py" / f).read_bytes(), f

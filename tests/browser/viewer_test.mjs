@@ -227,38 +227,95 @@ async function checkExport(browser, dir) {
   await context.close();
 }
 
-// A run still going, served by itself (`pedesis run --view`): the server reads its
-// ".part" files, the page waits for the first frame, and the frame count the server
-// reports grows as the run writes frames (the page asks every 2 s).
+// A run still going, served by itself (`pedesis run --view`): the page waits for the
+// first frame, the frame count grows as the run writes frames; the page's temperature
+// slider changes the running simulation (the log's ideal pressure n T follows), bad
+// requests are refused, and the record steering.csv, replayed by --steering on the same
+// config, reproduces the run's trajectory and log byte for byte.
 async function checkLive(browser) {
+  const live = softConfig(2).replace('snapshot_every = 100', 'snapshot_every = 2000')
+    .replace('log_every = 20', 'log_every = 500');
   const config = path.join(scratch, 'live.toml');
-  fs.writeFileSync(config, softConfig(2).replace('steps = 400', 'steps = 100000000')
-    .replace('snapshot_every = 100', 'snapshot_every = 2000').replace('log_every = 20', 'log_every = 500'));
-  const run = spawn(binary, ['run', config, '--out', path.join(scratch, 'live'), '--view', '--view-port', '0'],
+  fs.writeFileSync(config, live.replace('steps = 400', 'steps = 100000000'));
+  const dir = path.join(scratch, 'live');
+  const run = spawn(binary, ['run', config, '--out', dir, '--view', '--view-port', '0'],
     { stdio: ['ignore', 'pipe', 'inherit'], env: { ...process.env, OMP_NUM_THREADS: '1' } });
+  const ended = new Promise((done) => run.on('exit', done));
+  let stopped = false;
   try {
     const url = await new Promise((resolve, reject) => {
       let out = '';
       run.stdout.on('data', (d) => {
         out += d;
-        const m = out.match(/watch the run at (http:\/\/127\.0\.0\.1:\d+\/)/);
+        const m = out.match(/watch the run at (http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]{32})/);
         if (m) resolve(m[1]);
       });
       run.on('exit', (code) => reject(new Error(`pedesis run --view exited (${code}): ${out}`)));
     });
+    const base = url.split('?')[0], token = url.split('token=')[1];
     const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
     await page.goto(url);
     await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
     const first = await page.evaluate(() => window.pedesisView.frames());
-    await new Promise((done) => setTimeout(done, 4500));
+    await new Promise((done) => setTimeout(done, 2500));
     const later = await page.evaluate(() => window.pedesisView.frames());
-    const log = await (await fetch(url + 'api/log')).json();
-    check(first >= 1 && later > first && log.rows.length > 0,
-      `live (run --view): the page's frame count grows from ${first} to ${later}; the log has ${log.rows.length} rows`);
+    check(first >= 1 && later > first, `live (run --view): the page's frame count grows from ${first} to ${later}`);
+
+    // the page's control, as a user would move it
+    await page.evaluate(() => {
+      const slider = document.querySelector('#steer-temperature');
+      slider.value = '0.5';
+      slider.dispatchEvent(new Event('change'));
+    });
+    await page.waitForFunction(() => /from the next step/.test(document.querySelector('#steer-status').textContent),
+      null, { timeout: 10000 });
+    check(true, 'live: the temperature slider sent T = 0.5 and the server queued it');
+    const post = (body) => fetch(base + 'api/set', { method: 'POST', body })
+      .then(async (r) => [r.status, (await r.json()).error]);
+    const bad = [
+      [JSON.stringify({ token: 'f'.repeat(32), parameter: 'temperature', value: 1 }), 403],
+      [JSON.stringify({ parameter: 'temperature', value: 1 }), 403],
+      [JSON.stringify({ token, parameter: 'viscosity', value: 1 }), 400],
+      [JSON.stringify({ token, parameter: 'temperature', value: -1 }), 400],
+      [`{"token": "${token}", "parameter": "temperature", "value": "nan"}`, 400],
+      [`{"token": "${token}", "parameter": "temperature", "value": NaN}`, 400],
+      ['{"token": ', 400],
+    ];
+    for (const [body, status] of bad) {
+      const [got, error] = await post(body);
+      check(got === status && error, `live: ${body.slice(0, 60)} -> ${got} "${error}"`);
+    }
+    const readOnly = await browser.newPage();
+    await readOnly.goto(base);
+    await readOnly.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+    check(await readOnly.evaluate(() => document.querySelector('#steer-temperature').disabled),
+      'live: without the token the page shows the controls disabled');
+    await readOnly.close();
+    await new Promise((done) => setTimeout(done, 1500));
     await page.close();
+    run.kill('SIGTERM');
+    stopped = true;
+    await ended;
   } finally {
-    run.kill('SIGINT');
+    if (!stopped) run.kill('SIGTERM');
   }
+  const record = fs.readFileSync(path.join(dir, 'steering.csv'), 'utf8').trim().split('\n');
+  check(record.length === 2 && /^\d+,[^,]+,temperature,0\.5$/.test(record[1]),
+    `live: steering.csv records the one change: ${record[1]}`);
+  const rows = fs.readFileSync(path.join(dir, 'log.csv'), 'utf8').trim().split('\n');
+  const header = rows[0].split(','), last = rows[rows.length - 1].split(',');
+  const ideal = Number(last[header.indexOf('pressure_ideal')]);
+  check(Math.abs(ideal - (0.5 * 200) / (24 * 24)) < 1e-9,
+    `live: the log's last ideal pressure n T is ${ideal} (T = 0.5: ${(0.5 * 200) / 576})`);
+
+  const steps = JSON.parse(fs.readFileSync(path.join(dir, 'summary.json'), 'utf8')).steps;
+  const replayConfig = path.join(scratch, 'replay.toml');
+  fs.writeFileSync(replayConfig, live.replace('steps = 400', `steps = ${steps}`));
+  execFileSync(binary, ['run', replayConfig, '--out', path.join(scratch, 'replay'), '--steering',
+    path.join(dir, 'steering.csv')], { stdio: 'ignore', env: { ...process.env, OMP_NUM_THREADS: '1' } });
+  for (const file of ['trajectory.xyz', 'log.csv', 'steering.csv'])
+    check(fs.readFileSync(path.join(scratch, 'replay', file), 'utf8') === fs.readFileSync(path.join(dir, file), 'utf8'),
+      `replay: ${file} of the replayed record is the live run's, byte for byte (${steps} steps)`);
 }
 
 async function main() {

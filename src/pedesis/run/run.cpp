@@ -121,6 +121,13 @@ template <int D> class RunOf final : public Run {
         return a;
     }
 
+    std::vector<std::pair<std::string, double>> steerable() const override {
+        return setup_.engine->steerable();
+    }
+    void steer(const std::string& name, double value) override {
+        setup_.engine->steer(name, value);
+    }
+
     ~RunOf() override { commit_trajectories(); }
 
   private:

@@ -15,6 +15,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pedesis {
@@ -63,6 +64,11 @@ class Run {
     virtual const std::vector<std::string>& log_names() const = 0;
     virtual const std::vector<double>& last_log_row() const = 0;
     virtual FrameArrays frame() = 0;
+
+    // The parameters that may change between steps, and a change from the next step on
+    // (RunEngine::steerable, steer; run/steering.hpp records and replays them).
+    virtual std::vector<std::pair<std::string, double>> steerable() const = 0;
+    virtual void steer(const std::string& name, double value) = 0;
 };
 
 // Throws InputError for a config the engine refuses (before any file is written).

@@ -5,6 +5,7 @@
 // engine from the config and keeps what the run directory accumulates; the loop, the
 // triggers, the frames, the failure path and the order of the files are the
 // Simulation's, written once.
+#include "pedesis/core/error.hpp"
 #include "pedesis/core/frame.hpp"
 #include "pedesis/core/interrupt.hpp"
 
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pedesis {
@@ -70,6 +72,14 @@ template <int D> class RunEngine {
     // finish: the files only the end writes (speed histogram) and the printed summary.
     virtual nlohmann::json summary(const char* stopped_by) = 0;
     virtual void finish(const nlohmann::json& summary) = 0;
+
+    // What a running simulation lets change between steps (`pedesis run --view`,
+    // `--steering`): each parameter's name and current value (none by default).
+    virtual std::vector<std::pair<std::string, double>> steerable() const { return {}; }
+    // Sets one from the next step on; InputError for an unknown name or a bad value.
+    virtual void steer(const std::string& name, double /*value*/) {
+        throw InputError("this engine has no parameter '" + name + "' to change while it runs");
+    }
 };
 
 } // namespace pedesis

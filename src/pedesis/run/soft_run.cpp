@@ -8,8 +8,12 @@
 #include "pedesis/run/soft_checkpoint.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/build_system.hpp"
+#include "pedesis/soft/brownian.hpp"
 #include "pedesis/soft/domain_decomposition.hpp"
+#include "pedesis/soft/langevin.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
+#include "pedesis/soft/polar_align.hpp"
+#include "pedesis/soft/self_propulsion.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -65,8 +69,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         if (o_.comm && o_.comm->size() > 1) {
             // what measured_shared needs of the whole system, which does not change
             conserved_ = conserved_momentum_axes(state_.p, state_.box, momentum_);
-            for (std::size_t i = 0; i < state_.size() && !inertial(); ++i)
-                ideal_overdamped_ += bath_T_[state_.p.species[i]] / state_.box.volume();
+            species_count_.assign(table.size(), 0.0);
+            for (std::size_t i = 0; i < state_.size(); ++i)
+                species_count_[state_.p.species[i]] += 1.0;
             swim_alpha_.assign(table.size(), 0.0);
             for (std::size_t sp = 0; sp < table.size(); ++sp)
                 for (const auto& f : evolver_->forces())
@@ -236,6 +241,67 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     OutputChoice outputs() const { return {c_.formats, c_.log_quantities}; }
 
+    // temperature: of the position integrators (brownian, langevin), every species;
+    // alpha: of self_propulsion, every species; J: of polar_align.
+    std::vector<std::pair<std::string, double>> steerable() const override {
+        std::vector<std::pair<std::string, double>> out;
+        const std::size_t ns = state_.p.species_table.size();
+        for (const auto& i : evolver_->integrators()) {
+            if (const auto* b = dynamic_cast<const BrownianIntegrator<D>*>(i.get()))
+                out.emplace_back("temperature", b->temperature().at(0, ns));
+            else if (const auto* l = dynamic_cast<const LangevinIntegrator<D>*>(i.get()))
+                out.emplace_back("temperature", l->temperature().at(0, ns));
+            if (!out.empty()) break;
+        }
+        for (const auto& f : evolver_->forces())
+            if (const auto* p = dynamic_cast<const SelfPropulsion<D>*>(f.get())) {
+                out.emplace_back("alpha", p->alpha().at(0, ns));
+                break;
+            }
+        for (const auto& t : evolver_->torques())
+            if (const auto* a = dynamic_cast<const PolarAlign<D>*>(t.get())) {
+                out.emplace_back("J", a->coupling());
+                break;
+            }
+        return out;
+    }
+
+    void steer(const std::string& name, double value) override {
+        bool found = false;
+        if (name == "temperature")
+            for (const auto& i : evolver_->integrators()) {
+                if (auto* b = dynamic_cast<BrownianIntegrator<D>*>(i.get())) {
+                    b->set_temperature(value);
+                    found = true;
+                } else if (auto* l = dynamic_cast<LangevinIntegrator<D>*>(i.get())) {
+                    l->set_temperature(value);
+                    found = true;
+                }
+            }
+        else if (name == "alpha")
+            for (const auto& f : evolver_->forces()) {
+                if (auto* p = dynamic_cast<SelfPropulsion<D>*>(f.get())) {
+                    p->set_alpha(value);
+                    found = true;
+                }
+            }
+        else if (name == "J")
+            for (const auto& t : evolver_->torques())
+                if (auto* a = dynamic_cast<PolarAlign<D>*>(t.get())) {
+                    a->set_coupling(value);
+                    found = true;
+                }
+        if (!found) RunEngine<D>::steer(name, value);
+        // the logged ideal pressure of an overdamped run is n T of its bath
+        read_observable_parameters(state_.p.species_table);
+        if (domain_)
+            for (std::size_t sp = 0; sp < swim_alpha_.size(); ++sp) {
+                swim_alpha_[sp] = 0.0;
+                for (const auto& f : evolver_->forces())
+                    swim_alpha_[sp] += f->swim_force(sp, swim_alpha_.size());
+            }
+    }
+
   private:
     // The log's one-body quantities at this instant.
     struct Measured {
@@ -290,7 +356,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             m.temperature = freedom > 0.0 ? 2.0 * thermal / freedom : 0.0;
             m.ideal = 2.0 * thermal / (D * V);
         } else {
-            m.ideal = ideal_overdamped_;
+            for (std::size_t sp = 0; sp < species_count_.size(); ++sp)
+                m.ideal += species_count_[sp] * bath_T_[sp];
+            m.ideal /= V;
         }
         return m;
     }
@@ -362,10 +430,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     SoftState<D> whole_; // gathered, on process 0
     bool whole_current_ = false;
     std::size_t particles_ = 0; // in the whole system
-    // for measured_shared: the axes of conserved momentum, the ideal pressure of an
-    // overdamped run, and each species's active force
+    // for measured_shared: the axes of conserved momentum, the particles of each species,
+    // and each species's active force
     std::array<bool, D> conserved_{};
-    double ideal_overdamped_ = 0.0;
+    std::vector<double> species_count_; // of the whole system
     std::vector<double> swim_alpha_;
     struct {
         double seconds = 0.0, communication_seconds = 0.0, bytes_sent = 0.0;

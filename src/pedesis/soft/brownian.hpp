@@ -62,6 +62,11 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
     }
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }
+    // From the next step on (the coefficients are made from T every step).
+    void set_temperature(PerSpecies T) {
+        detail::check_overdamped(T, gamma_, "brownian");
+        T_ = std::move(T);
+    }
 
     void poststep(SoftState<D>& s, double dt, double max_move) override {
         c_.update(T_, gamma_, s.p.species_table.size(), dt);

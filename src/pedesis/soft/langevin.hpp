@@ -82,6 +82,13 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
     bool needs_initial_forces() const override { return true; }
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }
+    // From the next step on (the coefficients are made from T every step).
+    void set_temperature(PerSpecies T) {
+        for (double t : T.values())
+            if (!(t >= 0.0 && std::isfinite(t)))
+                throw InputError("langevin: T must be a finite number >= 0");
+        T_ = std::move(T);
+    }
 
     void prestep(SoftState<D>& s, double dt, double max_move) override {
         c_.update(T_, gamma_, s.p.species_table, dt);

@@ -24,6 +24,11 @@ template <int D> class PolarAlign final : public TorqueTerm<D> {
     PolarAlign(double J, double a) : J_(J), a_(a) {}
     std::string name() const override { return "polar_align"; }
     double range(const SoftState<D>&) const override { return a_; }
+    double coupling() const { return J_; }
+    void set_coupling(double J) {
+        if (!std::isfinite(J)) throw InputError("polar_align: J must be finite");
+        J_ = J;
+    }
 
     // Over the half list: n_i x n_j to i and n_j x n_i = -(n_i x n_j) to j, in the list's
     // colour order (bit-identical for any thread count).

@@ -31,6 +31,11 @@ template <int D> class SelfPropulsion final : public ForceTerm<D> {
     explicit SelfPropulsion(PerSpecies alpha) : alpha_(std::move(alpha)) {}
     std::string name() const override { return "self_propulsion"; }
     const PerSpecies& alpha() const { return alpha_; }
+    void set_alpha(PerSpecies alpha) {
+        for (double a : alpha.values())
+            if (!std::isfinite(a)) throw InputError("self_propulsion: alpha must be finite");
+        alpha_ = std::move(alpha);
+    }
 
     double swim_pressure(const SoftState<D>& s, const std::vector<Vec<D>>& start) const override {
         alpha_.tabulate(s.p.species_table.size(), table_, [](double a) { return a; });

@@ -56,17 +56,52 @@ struct ViewServer::Impl {
             run = render::open_run_directory(options.run_dir, render::SourceKind::automatic);
         } catch (const InputError& e) {
             // caught mid-write (a frame half written): what was read before stands
-            if (source) return run_info(*source, frame(0), options.run_dir);
+            if (source) return with_steering(run_info(*source, frame(0), options.run_dir));
             if (!options.wait_for_frames) throw;
             // a run that has not written its first frame yet
-            return {{"frames", 0}, {"waiting", e.what()}};
+            return with_steering(nlohmann::json{{"frames", 0}, {"waiting", e.what()}});
         }
         if (!source || run.source->frames() != source->frames() ||
             run.source->description() != source->description()) {
             source = std::move(run.source);
             cache.clear();
         }
-        return run_info(*source, frame(0), options.run_dir);
+        return with_steering(run_info(*source, frame(0), options.run_dir));
+    }
+
+    nlohmann::json with_steering(nlohmann::json info) const {
+        if (!options.steering) return info;
+        nlohmann::json& list = info["steerable"];
+        list = nlohmann::json::array();
+        for (const auto& [name, value] : options.steering->parameters())
+            list.push_back({{"name", name}, {"value", value}});
+        return info;
+    }
+
+    void answer_set(const httplib::Request& req, httplib::Response& res) {
+        if (!options.steering)
+            return send_error(res, 404,
+                              "this run cannot be changed: start it with pedesis run --view");
+        nlohmann::json body;
+        try {
+            body = nlohmann::json::parse(req.body);
+        } catch (const nlohmann::json::exception& e) {
+            return send_error(res, 400, fmt::format("malformed JSON: {}", e.what()));
+        }
+        if (!body.is_object() || !body.contains("token") || !body["token"].is_string() ||
+            body["token"].get<std::string>() != options.steering->token)
+            return send_error(res, 403, "wrong or missing token: use the address pedesis printed");
+        if (!body.contains("parameter") || !body["parameter"].is_string())
+            return send_error(res, 400, "\"parameter\" must be a string");
+        if (!body.contains("value") || !body["value"].is_number())
+            return send_error(res, 400, "\"value\" must be a finite number");
+        const std::string parameter = body["parameter"].get<std::string>();
+        const double value = body["value"].get<double>();
+        const std::string refused = options.steering->request(parameter, value);
+        if (!refused.empty()) return send_error(res, 400, refused);
+        res.status = 202;
+        res.set_content(nlohmann::json{{"queued", parameter}, {"value", value}}.dump(),
+                        "application/json");
     }
 
     void routes() {
@@ -85,6 +120,9 @@ struct ViewServer::Impl {
                    [this](const httplib::Request& req, httplib::Response& res) {
                        answer_frame(req, res);
                    });
+        server.Post("/api/set", [this](const httplib::Request& req, httplib::Response& res) {
+            answer_set(req, res);
+        });
         server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
             if (res.body.empty())
                 send_error(res, res.status, fmt::format("no such resource: {}", req.path));

@@ -7,14 +7,30 @@
 //   GET /api/info              JSON: dimension, box, frames, particles, species, fields
 //   GET /api/frame/K/FIELD     bytes of FIELD of frame K (headers X-Pedesis-Time, -Step)
 //   GET /api/log               JSON: log.csv's columns and rows (null for inf and nan)
+//   POST /api/set              JSON {"token", "parameter", "value"}: change a running
+//                              simulation (only with SteeringHooks): 202, or 403 for a
+//                              wrong token, 400 for anything else wrong
 //
 // A frame past the end, an unknown field, or one the run's files do not store is a 4xx
 // with a JSON {"error": message}.
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pedesis::view {
+
+// What `pedesis run --view` lets the page change: the run's parameters and a way to ask
+// for a change (run/steering.hpp's SteeringDesk, as plain functions: the server knows
+// nothing of runs), guarded by a random token that only the printed address carries.
+struct SteeringHooks {
+    std::string token;
+    std::function<std::vector<std::pair<std::string, double>>()> parameters;
+    std::function<std::string(const std::string&, double)> request; // "" when queued
+};
 
 struct ViewOptions {
     std::filesystem::path run_dir;
@@ -24,6 +40,7 @@ struct ViewOptions {
     // Serve a run directory that has no trajectory yet (`pedesis run --view`): the page
     // waits for the first frame. Otherwise a directory without one is an InputError.
     bool wait_for_frames = false;
+    std::optional<SteeringHooks> steering;
 };
 
 class ViewServer {

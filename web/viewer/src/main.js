@@ -459,6 +459,8 @@ async function main() {
     }, 'image/png');
   });
 
+  if (info.steerable && info.steerable.length)
+    steeringControls(info.steerable, new URLSearchParams(window.location.search).get('token'));
   await viewer.show(0);
   await plot.refresh();
   // a run still going writes more frames and rows: look again now and then
@@ -514,6 +516,34 @@ async function main() {
     },
   };
   window.pedesisReady = true;
+}
+
+// Sliders for what the running simulation lets change (pedesis run --view): each change
+// is sent with the address's token and applies from the run's next step.
+function steeringControls(parameters, token) {
+  const box = $('steer');
+  box.innerHTML = '<h3>change the run</h3>' + (token ? ''
+    : '<p>read-only: open the address <code>pedesis run --view</code> printed (with its token) to change the run</p>');
+  for (const { name, value } of parameters) {
+    const top = Math.max(4 * Math.abs(value), 1);
+    const lo = name === 'J' ? -top : 0;
+    const row = document.createElement('label');
+    row.innerHTML = `${name} <input type="range" id="steer-${name}" min="${lo}" max="${top}" ` +
+      `step="${top / 200}" value="${value}" ${token ? '' : 'disabled'}> <output>${value}</output>`;
+    box.appendChild(row);
+    const input = row.querySelector('input'), shown = row.querySelector('output');
+    input.addEventListener('input', () => { shown.textContent = input.value; });
+    input.addEventListener('change', async () => {
+      const r = await fetch('api/set', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+        body: JSON.stringify({ token, parameter: name, value: Number(input.value) }) });
+      const answer = await r.json().catch(() => ({}));
+      $('steer-status').textContent = r.ok ? `${name} = ${input.value} from the next step`
+        : `refused: ${answer.error || r.status}`;
+    });
+  }
+  const status = document.createElement('p');
+  status.id = 'steer-status';
+  box.appendChild(status);
 }
 
 function report(e) {

@@ -1,0 +1,139 @@
+#include "pedesis/run/steering.hpp"
+
+#include "pedesis/core/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace pedesis {
+
+std::vector<SteeringChange> read_steering(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw InputError(fmt::format("{}: cannot read the steering record", file.string()));
+    std::string line;
+    std::vector<SteeringChange> out;
+    std::size_t number = 1;
+    if (!std::getline(in, line) || line != "step,time,parameter,value")
+        throw InputError(
+            fmt::format("{}:1: expected the header step,time,parameter,value", file.string()));
+    while (std::getline(in, line)) {
+        ++number;
+        if (line.empty()) continue;
+        std::istringstream row(line);
+        std::string step, time, parameter, value;
+        std::getline(row, step, ',');
+        std::getline(row, time, ',');
+        std::getline(row, parameter, ',');
+        std::getline(row, value);
+        SteeringChange c;
+        try {
+            std::size_t used = 0;
+            c.step = std::stoull(step, &used);
+            if (used != step.size() || step.front() == '-') throw std::invalid_argument("step");
+            c.time = std::stod(time);
+            c.value = std::stod(value, &used);
+            if (used != value.size()) throw std::invalid_argument("value");
+        } catch (const std::exception&) {
+            throw InputError(fmt::format("{}:{}: expected step,time,parameter,value with numbers "
+                                         "(got '{}')",
+                                         file.string(), number, line));
+        }
+        c.parameter = parameter;
+        if (!std::isfinite(c.value) || parameter.empty())
+            throw InputError(fmt::format("{}:{}: a change needs a parameter and a finite value",
+                                         file.string(), number));
+        if (!out.empty() && c.step < out.back().step)
+            throw InputError(fmt::format("{}:{}: steps must not decrease", file.string(), number));
+        out.push_back(std::move(c));
+    }
+    return out;
+}
+
+SteeringDesk::SteeringDesk(Run& run, std::filesystem::path record,
+                           std::vector<SteeringChange> replay)
+    : run_(run), record_path_(std::move(record)), replay_(std::move(replay)),
+      values_(run.steerable()) {
+    for (const SteeringChange& c : replay_)
+        if (std::none_of(values_.begin(), values_.end(),
+                         [&](const auto& v) { return v.first == c.parameter; }))
+            throw InputError(fmt::format("steering record: this run has no parameter '{}' to "
+                                         "change",
+                                         c.parameter));
+    // a restart: what was changed before the checkpoint holds now
+    while (next_replay_ < replay_.size() && replay_[next_replay_].step <= run_.step()) {
+        apply(replay_[next_replay_]);
+        ++next_replay_;
+    }
+}
+
+SteeringDesk::~SteeringDesk() {
+    try {
+        write_record();
+        if (record_) record_->commit();
+    } catch (const std::exception&) {
+        // (a destructor must not throw; the ".part" file keeps every whole row)
+    }
+}
+
+std::string SteeringDesk::request(const std::string& parameter, double value) {
+    std::lock_guard lock(mutex_);
+    const bool known = std::any_of(values_.begin(), values_.end(),
+                                   [&](const auto& v) { return v.first == parameter; });
+    if (!known) {
+        std::string names;
+        for (const auto& v : values_) names += (names.empty() ? "" : ", ") + v.first;
+        return fmt::format("unknown parameter '{}' (this run has: {})", parameter,
+                           names.empty() ? "none" : names);
+    }
+    if (!std::isfinite(value)) return "the value must be a finite number";
+    if (parameter == "temperature" && value < 0.0)
+        return fmt::format("temperature must be >= 0 (got {})", value);
+    requests_.emplace_back(parameter, value);
+    return "";
+}
+
+std::vector<std::pair<std::string, double>> SteeringDesk::parameters() const {
+    std::lock_guard lock(mutex_);
+    return values_;
+}
+
+void SteeringDesk::apply(const SteeringChange& c) {
+    run_.steer(c.parameter, c.value);
+    {
+        std::lock_guard lock(mutex_);
+        for (auto& v : values_)
+            if (v.first == c.parameter) v.second = c.value;
+    }
+    unwritten_ += fmt::format("{},{},{},{}\n", c.step, c.time, c.parameter, c.value);
+}
+
+void SteeringDesk::write_record() {
+    if (record_path_.empty() || unwritten_.empty()) return;
+    if (!record_) {
+        // (first now: the run directory exists once the run has started)
+        record_ = std::make_unique<AtomicAppendFile>(record_path_);
+        record_->append("step,time,parameter,value\n");
+    }
+    record_->append(unwritten_);
+    unwritten_.clear();
+}
+
+void SteeringDesk::apply_due() {
+    while (next_replay_ < replay_.size() && replay_[next_replay_].step <= run_.step()) {
+        apply(replay_[next_replay_]);
+        ++next_replay_;
+    }
+    std::deque<std::pair<std::string, double>> due;
+    {
+        std::lock_guard lock(mutex_);
+        due.swap(requests_);
+    }
+    for (const auto& [parameter, value] : due) apply({run_.step(), run_.time(), parameter, value});
+    write_record();
+}
+
+} // namespace pedesis

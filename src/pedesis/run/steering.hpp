@@ -1,0 +1,68 @@
+#pragma once
+// Changes of a running simulation's parameters (temperature, alpha, J: RunEngine::steer)
+// asked for while it runs (`pedesis run --view`, from the page) or replayed from a record
+// (`pedesis run --steering FILE`). Each is applied between two steps, at the step it is
+// recorded with, so that replaying the record reproduces the run bit for bit.
+//
+// The record, steering.csv in the run directory: a header `step,time,parameter,value`,
+// then one row per change in the order applied, numbers in their shortest exact form.
+#include "pedesis/io/atomic_file.hpp"
+#include "pedesis/run/run.hpp"
+
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pedesis {
+
+struct SteeringChange {
+    std::uint64_t step = 0;
+    double time = 0.0;
+    std::string parameter;
+    double value = 0.0;
+};
+
+// A record as steering.csv holds it; InputError naming the file and line.
+std::vector<SteeringChange> read_steering(const std::filesystem::path& file);
+
+class SteeringDesk {
+  public:
+    // `record`: where to write the changes applied (empty: nowhere); `replay`: changes
+    // to apply at their steps. Those at or before the run's current step (a restart) are
+    // applied now. InputError if the replay names a parameter the run does not have.
+    SteeringDesk(Run& run, std::filesystem::path record, std::vector<SteeringChange> replay);
+    ~SteeringDesk(); // commits the record: every row in it is whole
+
+    // From any thread (the viewer's server): queues a change for the next step, or says
+    // why not ("" when queued). Refused: unknown parameters, non-finite values, negative
+    // temperatures.
+    std::string request(const std::string& parameter, double value);
+    // The parameters and their values as last applied, from any thread.
+    std::vector<std::pair<std::string, double>> parameters() const;
+
+    // From the run's thread between steps (an every-step operation of the run): applies
+    // the replayed changes of this step, then the requests queued since the last call,
+    // and records each.
+    void apply_due();
+
+  private:
+    void apply(const SteeringChange& change);
+    void write_record(); // the rows applied since the last call
+
+    Run& run_;
+    std::filesystem::path record_path_;
+    std::unique_ptr<AtomicAppendFile> record_;
+    std::string unwritten_; // rows applied, not yet in the record
+    std::vector<SteeringChange> replay_;
+    std::size_t next_replay_ = 0;
+    mutable std::mutex mutex_; // requests_ and values_
+    std::deque<std::pair<std::string, double>> requests_;
+    std::vector<std::pair<std::string, double>> values_;
+};
+
+} // namespace pedesis

@@ -1,0 +1,63 @@
+// `pedesis run --steering RECORD`: a record that cannot be replayed is refused before
+// anything runs, with the file and line or the parameter named, exit 2.
+#include "cli/cli_support.hpp"
+
+namespace pedesis::test {
+namespace {
+
+class CliSteering : public ScratchDir {};
+
+const std::string brownian =
+    "dimension = 2\ndynamics = \"brownian\"\nseed = 1\n[box]\nlength = 12.0\n"
+    "[[species]]\nname = \"A\"\ncount = 20\nradius = 0.5\n[initial]\npositions = \"random\"\n"
+    "[[force]]\nname = \"harmonic\"\nk = 10.0\n"
+    "[[integrator]]\nname = \"brownian\"\nT = 0.1\ngamma = 1.0\n"
+    "[run]\nsteps = 100\ndt = 0.005\n[output]\nlog_every = 50\nprogress = false\n";
+
+TEST_F(CliSteering, AMalformedRecordNamesItsLine) {
+    write("a.toml", brownian);
+    write("bad.csv", "step,time,parameter,value\n10,0.05,temperature,0.2\n20,zero,temperature,1\n");
+    const CliResult r = run_pedesis("run a.toml --out out --steering bad.csv", dir);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("bad.csv:3: expected step,time,parameter,value"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "log.csv"));
+}
+
+TEST_F(CliSteering, ARecordOfAParameterTheRunLacksIsRefused) {
+    write("a.toml", brownian);
+    write("j.csv", "step,time,parameter,value\n10,0.05,J,2\n");
+    const CliResult r = run_pedesis("run a.toml --out out --steering j.csv", dir);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("this run has no parameter 'J'"), std::string::npos) << r.output;
+}
+
+TEST_F(CliSteering, StepsMustNotDecreaseAndValuesMustBeFinite) {
+    write("a.toml", brownian);
+    write("back.csv", "step,time,parameter,value\n20,0.1,temperature,0.2\n10,0.05,temperature,1\n");
+    CliResult r = run_pedesis("run a.toml --out out --steering back.csv", dir);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("back.csv:3: steps must not decrease"), std::string::npos) << r.output;
+    write("nan.csv", "step,time,parameter,value\n20,0.1,temperature,nan\n");
+    r = run_pedesis("run a.toml --out out --steering nan.csv", dir);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("nan.csv:2: a change needs a parameter and a finite value"),
+              std::string::npos)
+        << r.output;
+}
+
+// A replayed change holds from its step on: the ideal pressure n T of the log row at
+// step 50 has the new temperature (the change at step 20), to the log's 10 digits.
+TEST_F(CliSteering, AReplayedChangeHoldsFromItsStep) {
+    write("a.toml", brownian);
+    write("t.csv", "step,time,parameter,value\n20,0.1,temperature,0.4\n");
+    const CliResult r = run_pedesis("run a.toml --out out --steering t.csv", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const CsvColumns log = csv_columns(read("out/log.csv"));
+    EXPECT_NEAR(std::stod(log.cells.at("pressure_ideal").at(0)), 0.1 * 20 / 144.0, 1e-9);
+    EXPECT_NEAR(std::stod(log.cells.at("pressure_ideal").at(1)), 0.4 * 20 / 144.0, 1e-9);
+    EXPECT_EQ(read("out/steering.csv"), read("t.csv"));
+}
+
+} // namespace
+} // namespace pedesis::test
