@@ -152,7 +152,8 @@ void add_run_command(CLI::App& app) {
         // desk, applied between steps and recorded in the run directory. Under MPI the
         // page only watches: a change reaching process 0 alone would split the run.
         std::unique_ptr<SteeringDesk> desk;
-        const bool live_changes = a->view && !comm;
+        // (the hard-particle engines have nothing to change: no desk, no every-step call)
+        const bool live_changes = a->view && !comm && !run->steerable().empty();
         if (live_changes || !a->steering.empty()) {
             std::vector<SteeringChange> replay;
             if (!a->steering.empty()) replay = read_steering(a->steering);
