@@ -59,5 +59,33 @@ TEST_F(CliSteering, AReplayedChangeHoldsFromItsStep) {
     EXPECT_EQ(read("out/steering.csv"), read("t.csv"));
 }
 
+// A run restarted from a checkpoint with its record applies the changes before the
+// checkpoint at once and the rest at their steps: its log after the checkpoint is the
+// run in one go's, byte for byte (soft restarts are bit-exact), with the whole record.
+TEST_F(CliSteering, ARestartWithTheRecordEndsAsTheRunInOneGo) {
+    std::string config = brownian;
+    config.replace(config.find("log_every = 50"), 14, "log_every = 10\ncheckpoint_every = 50");
+    write("a.toml", config);
+    write("t.csv", "step,time,parameter,value\n20,0.1,temperature,0.4\n70,0.35,temperature,0.02\n");
+    const CliResult whole = run_pedesis("run a.toml --out whole --steering t.csv", dir);
+    ASSERT_EQ(whole.exit_code, 0) << whole.output;
+    std::string first = config;
+    first.replace(first.find("steps = 100"), 11, "steps = 50");
+    write("first.toml", first);
+    const CliResult half = run_pedesis("run first.toml --out first --steering t.csv", dir);
+    ASSERT_EQ(half.exit_code, 0) << half.output;
+    const CliResult rest =
+        run_pedesis("run a.toml --out rest --restart first/checkpoint.bin --steering t.csv", dir);
+    ASSERT_EQ(rest.exit_code, 0) << rest.output;
+    EXPECT_EQ(read("rest/steering.csv"), read("t.csv"));
+    // every row after the checkpoint, every column (the MSD and pressures follow the
+    // positions to the log's 10 digits; the ideal pressure shows each temperature)
+    const std::string whole_log = read("whole/log.csv"), rest_log = read("rest/log.csv");
+    const std::string after = whole_log.substr(whole_log.find("\n60,"));
+    EXPECT_EQ(rest_log.substr(rest_log.find("\n60,")), after);
+    const CsvColumns log = csv_columns(rest_log);
+    EXPECT_NEAR(std::stod(log.cells.at("pressure_ideal").back()), 0.02 * 20 / 144.0, 1e-9);
+}
+
 } // namespace
 } // namespace pedesis::test
