@@ -45,8 +45,8 @@ std::string random_token() {
     return token;
 }
 
-// `pedesis run --view`: the viewer's server on the run directory, in a thread of its own
-// for as long as this lives.
+// `pedesis run --view`: the viewer's server on the run directory, serving for as long as
+// this lives, with the token that lets its page change the run.
 class LiveView {
   public:
     LiveView(const std::filesystem::path& dir, int port, SteeringDesk* desk) {
@@ -62,21 +62,14 @@ class LiveView {
                 [desk](const std::string& p, double v) { return desk->request(p, v); }};
         }
         server_ = std::make_unique<view::ViewServer>(o);
-        serving_ = std::thread([this] { server_->serve(); });
+        server_->start();
     }
-    ~LiveView() {
-        server_->stop();
-        serving_.join();
-    }
-    LiveView(const LiveView&) = delete;
-    LiveView& operator=(const LiveView&) = delete;
     // with the token when the page may change the run
     std::string url() const { return server_->url() + (token_.empty() ? "" : "?token=" + token_); }
 
   private:
     std::string token_;
     std::unique_ptr<view::ViewServer> server_;
-    std::thread serving_;
 };
 
 // One line per quantity: name, unit, engines, meaning.

@@ -81,10 +81,8 @@ void add_view_command(CLI::App& app) {
                 std::cerr << "pedesis view: could not start a browser; open the address above\n";
         }
         InterruptGuard guard;
-        std::thread serving([&] { server.serve(); });
+        server.start();
         while (!interrupt_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        server.stop();
-        serving.join();
     });
 }
 

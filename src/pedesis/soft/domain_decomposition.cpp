@@ -48,27 +48,6 @@ template <int D> void append(const std::vector<double>& records, SoftState<D>& s
     for (std::size_t k = 0; k < n; ++k) unpack(records.data() + k * record_size<D>, s, first + k);
 }
 
-// Keeps the particles i with keep[i], in order, and drops the ghosts.
-template <int D> void keep_only(SoftState<D>& s, const std::vector<char>& keep) {
-    std::size_t w = 0;
-    for (std::size_t i = 0; i < keep.size(); ++i) {
-        if (!keep[i]) continue;
-        if (w != i) {
-            s.p.position[w] = s.p.position[i];
-            s.p.velocity[w] = s.p.velocity[i];
-            s.p.tag[w] = s.p.tag[i];
-            s.p.species[w] = s.p.species[i];
-            s.director[w] = s.director[i];
-            s.force[w] = s.force[i];
-            s.torque[w] = s.torque[i];
-            s.image[w] = s.image[i];
-        }
-        ++w;
-    }
-    s.ghosts = 0;
-    s.resize(w);
-}
-
 } // namespace
 
 template <int D> std::array<int, D> domain_grid(int processes, const Box<D>& box, double range) {
@@ -214,7 +193,7 @@ void DomainDecomposition<D>::ghost_destinations(const Vec<D>& r, std::vector<int
 template <int D> void DomainDecomposition<D>::scatter(SoftState<D>& s) const {
     std::vector<char> keep(s.size());
     for (std::size_t i = 0; i < s.size(); ++i) keep[i] = domain_of(s.p.position[i]) == comm_.rank();
-    keep_only(s, keep);
+    s.keep_only(keep);
 }
 
 template <int D> void DomainDecomposition<D>::redistribute(SoftState<D>& s, double sort_cell) {
@@ -239,7 +218,7 @@ template <int D> void DomainDecomposition<D>::redistribute(SoftState<D>& s, doub
                  far ? everyone[static_cast<std::size_t>(to[i])]
                      : send_[static_cast<std::size_t>(
                            partner_of_rank_[static_cast<std::size_t>(to[i])])]);
-    keep_only(s, keep);
+    s.keep_only(keep);
     std::vector<std::size_t> counts;
     append(far ? comm_.exchange(everyone, counts) : comm_.exchange_with(partners_, send_, counts),
            s);

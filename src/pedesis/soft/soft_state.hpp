@@ -35,28 +35,41 @@ template <int D> struct SoftState {
     std::size_t owned() const { return p.size() - ghosts; }
 
     void resize(std::size_t n) {
-        p.resize(n);
-        director.resize(n);
-        force.resize(n);
-        torque.resize(n);
-        image.resize(n);
+        for_each_field([n](auto& v) { v.resize(n); });
     }
 
     // Reorders storage so that new index i holds the particle at old index order[i]; tags
     // travel with the particles, so nothing a user sees changes.
     void apply_order(const std::vector<std::uint32_t>& order) {
-        auto permute = [&](auto& v) {
+        for_each_field([&](auto& v) {
             auto old = v;
             for (std::size_t i = 0; i < order.size(); ++i) v[i] = old[order[i]];
-        };
-        permute(p.position);
-        permute(p.velocity);
-        permute(p.tag);
-        permute(p.species);
-        permute(director);
-        permute(force);
-        permute(torque);
-        permute(image);
+        });
+    }
+
+    // Calls f on every per-particle array (what travels with a particle).
+    template <class F> void for_each_field(F&& f) {
+        f(p.position);
+        f(p.velocity);
+        f(p.tag);
+        f(p.species);
+        f(director);
+        f(force);
+        f(torque);
+        f(image);
+    }
+
+    // Keeps the particles i with keep[i] (keep.size() <= size()), in their order, and
+    // drops the rest and every ghost.
+    void keep_only(const std::vector<char>& keep) {
+        std::size_t w = 0;
+        for (std::size_t i = 0; i < keep.size(); ++i) {
+            if (!keep[i]) continue;
+            if (w != i) for_each_field([&](auto& v) { v[w] = v[i]; });
+            ++w;
+        }
+        ghosts = 0;
+        resize(w);
     }
 
     // The view writers and observers take (valid while the state is neither resized nor

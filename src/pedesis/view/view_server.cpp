@@ -14,6 +14,7 @@
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <thread>
 #include <utility>
 
 namespace pedesis::view {
@@ -34,6 +35,7 @@ void send_error(httplib::Response& res, int status, const std::string& message) 
 struct ViewServer::Impl {
     ViewOptions options;
     httplib::Server server;
+    std::thread serving;
     int port = 0;
     std::mutex mutex; // the frame source and cache (the server answers on several threads)
     std::unique_ptr<render::FrameSource> source;
@@ -180,7 +182,12 @@ ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl
                                      options.host, options.port));
 }
 
-ViewServer::~ViewServer() = default;
+ViewServer::~ViewServer() {
+    if (impl_->serving.joinable()) {
+        impl_->server.stop();
+        impl_->serving.join();
+    }
+}
 
 int ViewServer::port() const {
     return impl_->port;
@@ -192,12 +199,9 @@ std::string ViewServer::url() const {
                        impl_->port);
 }
 
-void ViewServer::serve() {
-    impl_->server.listen_after_bind();
-}
-
-void ViewServer::stop() {
-    impl_->server.stop();
+void ViewServer::start() {
+    if (!impl_->serving.joinable())
+        impl_->serving = std::thread([this] { impl_->server.listen_after_bind(); });
 }
 
 } // namespace pedesis::view

@@ -54,9 +54,8 @@ class ViewServer {
 
     int port() const;
     std::string url() const;
-    // Serves until stop() (from another thread).
-    void serve();
-    void stop();
+    // Serves on a thread of its own until the server is destroyed.
+    void start();
 
   private:
     struct Impl;
