@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 #include <utility>
@@ -100,6 +101,27 @@ TEST(CellList, CellCountsAlongAxes) {
     // a box smaller than the cell still has one cell
     CellList<3> tiny(box, 100.0);
     EXPECT_EQ(tiny.cell_count(), 1u);
+}
+
+// A ratio of box to cell far outside int's range (a crafted checkpoint once gave 6.5e128,
+// undefined behaviour in the cast) or NaN gives a capped grid, and far-off or NaN
+// positions still land in a cell of the grid.
+TEST(CellList, AbsurdRatiosGiveACappedGrid) {
+    Box<2> box2(Vec<2>{{20.0, 20.0}}, {true, false});
+    CellList<2> fine(box2, 3e-128);
+    EXPECT_EQ(fine.cells_along(0), CellList<2>::max_cells_along);
+    EXPECT_EQ(fine.cells_along(1), CellList<2>::max_cells_along);
+    CellList<2> nan_cell(box2, std::nan(""));
+    EXPECT_EQ(nan_cell.cell_count(), 1u);
+    Box<3> huge(Vec<3>{{1e300, 1e300, 1e300}}, {true, true, true});
+    CellList<3> sparse(huge, 1.0);
+    EXPECT_LE(sparse.cell_count(), std::size_t{1} << 26);
+    for (double x : {1e250, -1e250, std::nan("")}) {
+        const auto c = fine.cell_index(Vec<2>{{x, x}});
+        EXPECT_GE(c, 0) << x;
+        EXPECT_LT(c, static_cast<std::int32_t>(fine.cell_count())) << x;
+    }
+    EXPECT_GE(fine.cells_to_reach(1e300), 1);
 }
 
 TEST(CellList, NeighbourCellsAreDistinct) {

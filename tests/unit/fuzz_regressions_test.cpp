@@ -52,9 +52,9 @@ TEST(FuzzRegressions, GsdReader) {
     EXPECT_GE(replay("fuzz_gsd", pedesis::fuzz::gsd_input), 1);
 }
 TEST(FuzzRegressions, CheckpointLoaders) {
-    // the seeds (one valid checkpoint per engine) and the position of 1e236 that made the
-    // stepped engine's cell list compute an int out of range
-    EXPECT_GE(replay("fuzz_checkpoint", pedesis::fuzz::checkpoint_input), 4);
+    // the seeds (one valid checkpoint per engine), the position of 1e236 and the radius of
+    // 1e-121 that made the stepped engine's cell list compute an int out of range
+    EXPECT_GE(replay("fuzz_checkpoint", pedesis::fuzz::checkpoint_input), 5);
 }
 
 // The seeds are valid: each engine's checkpoint seed restarts (no refusal at all).

@@ -5,6 +5,7 @@
 // axes do not wrap. Supports incremental insert/remove (the event engine moves one
 // particle at a time) as well as a full rebuild.
 #include "pedesis/core/box.hpp"
+#include "pedesis/core/clamped_int.hpp"
 
 #include <algorithm>
 #include <array>
@@ -17,6 +18,8 @@ namespace pedesis {
 template <int D> class CellList {
   public:
     static constexpr std::int32_t none = -1;
+    // 4096 cells along an axis in 2D, 406 in 3D: at most 2^24 and 2^26 cells (64 and 256 MB)
+    static constexpr int max_cells_along = D == 2 ? 4096 : 406;
 
     CellList() = default;
     // With `periodic_multiple` m > 1, a periodic axis with at least m cells gets a
@@ -25,10 +28,10 @@ template <int D> class CellList {
     CellList(const Box<D>& box, double min_cell, int periodic_multiple = 1) : box_(box) {
         std::size_t total = 1;
         for (int a = 0; a < D; ++a) {
-            int n = static_cast<int>(box.length(a) / min_cell);
-            if (n < 1) n = 1;
-            // cap the grid so that huge sparse boxes do not allocate absurd memory
-            if (n > 4096) n = 4096;
+            // the ratio is clamped before it becomes an int: a huge box, a tiny cutoff or
+            // NaN from a crafted file must not overflow; the cap keeps the grid of a huge
+            // sparse box within max_cells_along per axis (wider cells stay correct)
+            int n = clamped_int(box.length(a) / min_cell, 1, max_cells_along);
             if (box.periodic(a) && n >= periodic_multiple) n -= n % periodic_multiple;
             n_[a] = n;
             inv_w_[a] = n / box.length(a);
@@ -156,7 +159,7 @@ template <int D> class CellList {
     int cells_to_reach(double reach) const {
         int m = 1;
         for (int a = 0; a < D; ++a)
-            m = std::max(m, static_cast<int>(std::ceil(reach / cell_width(a))));
+            m = std::max(m, clamped_int(std::ceil(reach / cell_width(a)), 1, 1 << 30));
         return m;
     }
 
@@ -187,7 +190,9 @@ template <int D> class CellList {
 
   private:
     int coord(const Vec<D>& r, int a) const {
-        int c = static_cast<int>(std::floor((r[a] - box_.lo(a)) * inv_w_[a]));
+        // a position absurdly far outside the box (a blow-up) must not overflow the int;
+        // any position within 2^30 cells keeps its true periodic image
+        int c = clamped_int(std::floor((r[a] - box_.lo(a)) * inv_w_[a]), -(1 << 30), 1 << 30);
         if (box_.periodic(a)) {
             c %= n_[a];
             if (c < 0) c += n_[a];
