@@ -145,7 +145,6 @@ void add_run_command(CLI::App& app) {
         // desk, applied between steps and recorded in the run directory. Under MPI the
         // page only watches: a change reaching process 0 alone would split the run.
         std::unique_ptr<SteeringDesk> desk;
-        // (the hard-particle engines have nothing to change: no desk, no every-step call)
         const bool live_changes = a->view && !comm && !run->steerable().empty();
         if (live_changes || !a->steering.empty()) {
             std::vector<SteeringChange> replay;
@@ -161,7 +160,9 @@ void add_run_command(CLI::App& app) {
                                               live_changes ? desk.get() : nullptr);
             console << fmt::format("pedesis: watch the run at {}\n", live->url()) << std::flush;
         }
+        if (desk) desk->replay_until_done();
         run->run();
+        if (desk) desk->run_ended();
         if (live && guard.signal() == 0) {
             console << fmt::format("pedesis: the run is done; {} still shows it until Ctrl-C\n",
                                    live->url())

@@ -198,3 +198,30 @@ def test_set_changes_the_run_and_the_record_replays_it_in_the_cli(tmp_path, run_
     run_cli("run", cfg, "--out", tmp_path / "cli", "--steering", tmp_path / "py" / "steering.csv")
     for f in ("log.csv", "checkpoint.bin", "trajectory.gsd", "steering.csv"):
         assert (tmp_path / "cli" / f).read_bytes() == (tmp_path / "py" / f).read_bytes(), f
+
+
+def test_set_restitution_of_an_event_run_at_a_time_off_the_grid_replays(tmp_path, run_cli):
+    # the event engine has no steps: a change from Python at t = 1.3 (between two log
+    # rows) is recorded with its time, and the CLI replaying the record stops the run at
+    # that exact time, so the log and checkpoint are the same byte for byte; the elastic
+    # gas (restitution 1 here) keeps its kinetic energy exactly up to the change (energy
+    # fraction 1 to the log's 10 digits) and loses some on the rows after it
+    cfg = write(tmp_path, "event", CONFIGS["event"].replace("restitution = 0.9", "restitution = 1.0"))
+    sim = pedesis.Simulation.from_file(cfg, out=tmp_path / "py")
+    assert set(sim.steerable) == {"restitution", "wall_restitution"}  # a walled box
+    assert sim.run(time=1.3) is None
+    sim.set("restitution", 0.5)
+    with pytest.raises(ValueError, match=r"restitution must lie in \[0, 1\]"):
+        sim.set("restitution", 1.5)
+    assert sim.run() == "time"
+    record = (tmp_path / "py" / "steering.csv").read_text().splitlines()
+    assert len(record) == 2 and record[1].split(",")[1:] == ["1.3", "restitution", "0.5"]
+    rows = (tmp_path / "py" / "log.csv").read_text().splitlines()
+    header = rows[0].split(",")
+    times = [float(r.split(",")[0]) for r in rows[1:]]
+    energy = [float(r.split(",")[header.index("energy_fraction")]) for r in rows[1:]]
+    assert all(e == 1.0 for t, e in zip(times, energy) if t < 1.3)
+    assert all(e < 1.0 for t, e in zip(times, energy) if t > 1.3)
+    run_cli("run", cfg, "--out", tmp_path / "cli", "--steering", tmp_path / "py" / "steering.csv")
+    for f in ("log.csv", "checkpoint.bin", "steering.csv"):
+        assert (tmp_path / "cli" / f).read_bytes() == (tmp_path / "py" / f).read_bytes(), f

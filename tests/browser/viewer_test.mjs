@@ -179,7 +179,7 @@ async function checkBadRequests(dir) {
   try {
     const cases = [
       ['api/frame/999/position', 404, 'past the end'],
-      ['api/frame/0/colour', 400, "unknown field 'colour'"],
+      ['api/frame/0/colour', 404, "no field 'colour' (it has: position, radius, species, director, speed"],
       ['api/frame/99999999999999999999/position', 404, 'no such resource'],
       ['api/nothing', 404, 'no such resource'],
     ];
@@ -227,6 +227,23 @@ async function checkExport(browser, dir) {
   await context.close();
 }
 
+// `pedesis run CONFIG --view` in the background: resolves once it prints its address.
+async function startLiveRun(config, dir) {
+  const run = spawn(binary, ['run', config, '--out', dir, '--view', '--view-port', '0'],
+    { stdio: ['ignore', 'pipe', 'inherit'], env: { ...process.env, OMP_NUM_THREADS: '1' } });
+  const ended = new Promise((done) => run.on('exit', done));
+  let out = '';
+  run.stdout.on('data', (d) => { out += d; });
+  const url = await new Promise((resolve, reject) => {
+    run.stdout.on('data', () => {
+      const m = out.match(/watch the run at (http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]{32})/);
+      if (m) resolve(m[1]);
+    });
+    run.on('exit', (code) => reject(new Error(`pedesis run --view exited (${code}): ${out}`)));
+  });
+  return { run, ended, url, base: url.split('?')[0], token: url.split('token=')[1], output: () => out };
+}
+
 // A run still going, served by itself (`pedesis run --view`): the page waits for the
 // first frame, the frame count grows as the run writes frames; the page's temperature
 // slider changes the running simulation (the log's ideal pressure n T follows), bad
@@ -238,21 +255,9 @@ async function checkLive(browser) {
   const config = path.join(scratch, 'live.toml');
   fs.writeFileSync(config, live.replace('steps = 400', 'steps = 100000000'));
   const dir = path.join(scratch, 'live');
-  const run = spawn(binary, ['run', config, '--out', dir, '--view', '--view-port', '0'],
-    { stdio: ['ignore', 'pipe', 'inherit'], env: { ...process.env, OMP_NUM_THREADS: '1' } });
-  const ended = new Promise((done) => run.on('exit', done));
+  const { run, ended, url, base, token } = await startLiveRun(config, dir);
   let stopped = false;
   try {
-    const url = await new Promise((resolve, reject) => {
-      let out = '';
-      run.stdout.on('data', (d) => {
-        out += d;
-        const m = out.match(/watch the run at (http:\/\/127\.0\.0\.1:\d+\/\?token=[0-9a-f]{32})/);
-        if (m) resolve(m[1]);
-      });
-      run.on('exit', (code) => reject(new Error(`pedesis run --view exited (${code}): ${out}`)));
-    });
-    const base = url.split('?')[0], token = url.split('token=')[1];
     const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
     await page.goto(url);
     await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
@@ -318,6 +323,117 @@ async function checkLive(browser) {
       `replay: ${file} of the replayed record is the live run's, byte for byte (${steps} steps)`);
 }
 
+// The event engine live: its restitution slider makes an elastic gas (energy fraction 1,
+// to the log's 10 digits, exactly conserved up to rounding) inelastic from the next log
+// row on (the energy then falls and never rises; the TC model, tc = 1e-4, keeps a long
+// cooling from inelastic collapse); the record holds the change with its time,
+// and replaying it on the same config gives the same log, row for row, up to the last row
+// of the time grid. Out-of-range values are refused, and so is any change once the run
+// has ended (its page stays open).
+async function checkLiveEvent(browser) {
+  const gas = `dimension = 2\nseed = 5\n[box]\nlength = 80.0\n[[species]]\nname = "A"\ncount = 2000\n` +
+    'radius = 0.5\n[event]\ntc = 1e-4\n[run]\ntime = TIME\n[output]\nlog_interval = 5.0\nsnapshot_interval = 1000.0\n' +
+    'formats = ["xyz"]\nprogress = false\n';
+  const config = path.join(scratch, 'live_event.toml');
+  fs.writeFileSync(config, gas.replace('TIME', '1.0e9'));
+  const dir = path.join(scratch, 'live_event');
+  const { run, ended, url, base, token } = await startLiveRun(config, dir);
+  const post = (body) => fetch(base + 'api/set', { method: 'POST', body: JSON.stringify(body) })
+    .then(async (r) => [r.status, (await r.json()).error]);
+  try {
+    const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    await page.goto(url);
+    await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+    const [status, error] = await post({ token, parameter: 'restitution', value: 1.5 });
+    check(status === 400 && /\[0, 1\]/.test(error), `live event: restitution 1.5 -> ${status} "${error}"`);
+    await page.evaluate(() => {
+      const slider = document.querySelector('#steer-restitution');
+      slider.value = '0.9';
+      slider.dispatchEvent(new Event('change'));
+    });
+    await page.waitForFunction(() => /from the next step/.test(document.querySelector('#steer-status').textContent),
+      null, { timeout: 10000 });
+    await new Promise((done) => setTimeout(done, 2000));
+    await page.close();
+  } finally {
+    run.kill('SIGTERM');
+    await ended;
+  }
+  const record = fs.readFileSync(path.join(dir, 'steering.csv'), 'utf8').trim().split('\n');
+  const change = record.length === 2 ? record[1].split(',') : [];
+  check(change[2] === 'restitution' && change[3] === '0.9',
+    `live event: steering.csv records the one change: ${record[1]}`);
+  const rows = fs.readFileSync(path.join(dir, 'log.csv'), 'utf8').trim().split('\n');
+  const header = rows[0].split(','), col = header.indexOf('energy_fraction');
+  const t = rows.slice(1).map((r) => Number(r.split(',')[0]));
+  const energy = rows.slice(1).map((r) => Number(r.split(',')[col]));
+  const changedAt = Number(change[1]);
+  const before = energy.filter((_, k) => t[k] <= changedAt), after = energy.filter((_, k) => t[k] > changedAt);
+  check(before.length > 1 && before.every((e) => e === 1),
+    `live event: the energy fraction is 1 on all ${before.length} rows up to the change at t = ${changedAt}`);
+  // (a cold gas late in the run may see no collision between two rows: never a rise)
+  check(after.length > 2 && after[0] < 1 && after.every((e, k) => e <= (k ? after[k - 1] : 1)),
+    `live event: it falls from the first row after and never rises over the ${after.length} rows after (last ${after[after.length - 1]})`);
+
+  const grid = rows.slice(0, -1); // the last row is the instant the signal came
+  const last = t[t.length - 2];
+  const replayConfig = path.join(scratch, 'replay_event.toml');
+  fs.writeFileSync(replayConfig, gas.replace('TIME', String(last)));
+  execFileSync(binary, ['run', replayConfig, '--out', path.join(scratch, 'replay_event'), '--steering',
+    path.join(dir, 'steering.csv')], { stdio: 'ignore' });
+  const replay = fs.readFileSync(path.join(scratch, 'replay_event', 'log.csv'), 'utf8').trim().split('\n');
+  check(replay.join('\n') === grid.join('\n'),
+    `replay event: the log of the replayed record is the live run's, row for row (${grid.length - 1} rows to t = ${last})`);
+
+  // a short run that ends while its page stays: a change is refused after the end
+  const shortConfig = path.join(scratch, 'ended_event.toml');
+  fs.writeFileSync(shortConfig, gas.replace('TIME', '10.0'));
+  const short = await startLiveRun(shortConfig, path.join(scratch, 'ended_event'));
+  try {
+    for (let k = 0; k < 100 && !/the run is done/.test(short.output()); ++k)
+      await new Promise((done) => setTimeout(done, 100));
+    const answer = await fetch(short.base + 'api/set', { method: 'POST',
+      body: JSON.stringify({ token: short.token, parameter: 'restitution', value: 0.5 }) });
+    const why = (await answer.json()).error;
+    check(answer.status === 400 && /ended/.test(why), `ended event run: a change -> ${answer.status} "${why}"`);
+  } finally {
+    short.run.kill('SIGTERM');
+    await short.ended;
+  }
+}
+
+// A file of the user's own: an extended XYZ with a column pedesis does not write
+// ("energy"). The colour menu offers it, and colouring by it paints each particle's
+// centre in the PNG with viridis at its place between the frame's least and largest
+// value (-1, 0.5, 2: the ends and the middle of the bar).
+async function checkOwnColumn(browser) {
+  const dir = path.join(scratch, 'own_column');
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(path.join(dir, 'trajectory.xyz'), '3\n' +
+    'Lattice="12 0 0 0 12 0 0 0 1" Origin="-6 -6 -0.5" pbc="T T F" ' +
+    'Properties=species:S:1:pos:R:3:radius:R:1:energy:R:1 Time=0\n' +
+    'A -3 0 0 1.0 -1\nA 0 0 0 1.0 0.5\nA 3 0 0 1.0 2\n');
+  const { server, url } = await startServer(dir);
+  try {
+    const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    await page.goto(url);
+    await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+    const options = await page.evaluate(() => [...document.querySelectorAll('#colour option')].map((o) => o.value));
+    check(options.includes('energy'), `own column: the colour menu offers it (${options.join(', ')})`);
+    await page.selectOption('#colour', 'energy');
+    await page.waitForFunction(() => /energy/.test(document.querySelector('#colourbar').textContent), null,
+      { timeout: 10000 });
+    const points = await page.evaluate(() => [0, 1, 2].map((i) => window.pedesisView.project(i)));
+    const pixels = await pngPixels(page, points);
+    const want = [[68, 1, 84], [33, 145, 140], [253, 231, 37]];
+    const ok = want.every((w, k) => w.every((c, a) => Math.abs(c - pixels[k][a]) <= 6));
+    check(ok, `own column: the centres show viridis at energy -1, 0.5, 2: ${pixels.map((p) => p.slice(0, 3).join(' ')).join(' | ')}`);
+    await page.close();
+  } finally {
+    server.kill('SIGINT');
+  }
+}
+
 async function main() {
   if (!fs.existsSync(CHROMIUM)) throw new Error(`${CHROMIUM} is missing: install Debian's chromium (make deps)`);
   const runs = [
@@ -338,7 +454,9 @@ async function main() {
     for (const [name, dimension] of runs)
       await checkRun(browser, name, dimension, path.join(scratch, name.replace(' ', '_')));
     await checkExport(browser, path.join(scratch, 'soft_2D'));
+    await checkOwnColumn(browser);
     await checkLive(browser);
+    await checkLiveEvent(browser);
   } finally {
     await browser.close();
   }

@@ -159,6 +159,39 @@ TEST_F(XyzReaderTest, ReadsOtherColumnLayoutsAndDefaults) {
     EXPECT_TRUE(f.velocity.empty());
     EXPECT_TRUE(f.radius.empty());
     EXPECT_TRUE(f.id.empty());
+    // the columns pedesis does not read itself, one number per particle each
+    ASSERT_EQ(f.extra.size(), 2u);
+    EXPECT_EQ(f.extra[0].first, "charge");
+    EXPECT_EQ(f.extra[0].second, (std::vector<double>{0.5, -0.5}));
+    EXPECT_EQ(f.extra[1].first, "tags");
+    EXPECT_EQ(f.extra[1].second, (std::vector<double>{7.0, 8.0}));
+}
+
+// A wider column is split: name_x, _y, _z for three numbers, name_0, name_1, ... else;
+// text and logical columns are not numbers to colour by; NaN is refused, inf kept.
+TEST_F(XyzReaderTest, WideColumnsAreSplitAndNaNIsRefused) {
+    const auto file = write("wide.xyz", "1\nLattice=\"4 0 0 0 5 0 0 0 6\" "
+                                        "Properties=species:S:1:pos:R:3:forces:R:3:q:R:2:"
+                                        "label:S:1:on:L:1:e:R:1\n"
+                                        "Ar 0 0 0 1 2 3 4 5 x T inf\n");
+    const XyzFrame f = XyzReader(file).frame(0);
+    std::vector<std::string> names;
+    for (const auto& [name, values] : f.extra) names.push_back(name);
+    EXPECT_EQ(names,
+              (std::vector<std::string>{"forces_x", "forces_y", "forces_z", "q_0", "q_1", "e"}));
+    EXPECT_EQ(f.extra[2].second, (std::vector<double>{3.0}));
+    EXPECT_EQ(f.extra[4].second, (std::vector<double>{5.0}));
+    EXPECT_EQ(f.extra[5].second, (std::vector<double>{inf}));
+    const auto bad = write("nan.xyz", "1\nLattice=\"4 0 0 0 5 0 0 0 6\" "
+                                      "Properties=species:S:1:pos:R:3:e:R:1\nAr 0 0 0 nan\n");
+    try {
+        (void)XyzReader(bad).frame(0);
+        ADD_FAILURE() << "NaN was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("nan.xyz: line 3: column 'e' holds 'nan'"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST_F(XyzReaderTest, TruncatedFileIsRefusedNamingFileAndFrame) {

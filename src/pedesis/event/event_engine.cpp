@@ -456,6 +456,20 @@ template <int D> template <bool Growing> void EventEngine<D>::predict_with(std::
     ev_count_[i] = partner >= 0 ? count_[partner] : 0;
 }
 
+template <int D> void EventEngine<D>::set_restitution(double xi) {
+    EventParams p = params_;
+    p.restitution = xi;
+    validate(p);
+    params_ = p;
+}
+
+template <int D> void EventEngine<D>::set_wall_restitution(double xi) {
+    EventParams p = params_;
+    p.wall_restitution = xi;
+    validate(p);
+    params_ = p;
+}
+
 template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_t j) {
     advance(i);
     advance(j);

@@ -74,6 +74,11 @@ template <int D> class EventEngine {
     double time() const { return now_; }
     const Box<D>& box() const { return box_; }
     const EventParams& params() const { return params_; }
+    // From the next collision on (a change while it runs: pedesis run --view, --steering).
+    // Collision times do not depend on it, so the predicted events stay valid. InputError
+    // outside [0, 1].
+    void set_restitution(double xi);
+    void set_wall_restitution(double xi);
     const EventCounters<D>& counters() const { return counters_; }
     double kinetic_energy() const { return kinetic_; }
     std::size_t size() const { return p_.size(); }

@@ -322,6 +322,26 @@ XyzFrame XyzReader::frame(std::size_t k) const {
     const Column* id = find_column(columns, "id", 'I', 1, where);
     if (!species || !pos)
         throw InputError(where + ": Properties must include species:S:1 and pos:R:3");
+    // the other numeric columns, one number per particle each (XyzFrame::extra)
+    std::vector<std::pair<const Column*, int>> extra_of;
+    for (const Column& c : columns) {
+        if (c.type == 'S' || c.type == 'L' || &c == species || &c == pos || &c == velo ||
+            &c == radius || &c == mass || &c == id)
+            continue;
+        for (int k = 0; k < c.count; ++k) {
+            std::string name = c.name;
+            if (c.count > 1) {
+                name.push_back('_');
+                if (c.count == 3)
+                    name.push_back("xyz"[k]);
+                else
+                    name.append(std::to_string(k));
+            }
+            extra_of.emplace_back(&c, k);
+            f.extra.emplace_back(std::move(name), std::vector<double>{});
+            f.extra.back().second.reserve(s.count);
+        }
+    }
 
     f.species.reserve(s.count);
     f.position.reserve(s.count);
@@ -378,6 +398,8 @@ XyzFrame XyzReader::frame(std::size_t k) const {
                                              at_line(path_, lineno), m));
             f.mass.push_back(m);
         }
+        for (std::size_t e = 0; e < extra_of.size(); ++e)
+            f.extra[e].second.push_back(number(*extra_of[e].first, extra_of[e].second, false));
         if (id) {
             const std::string_view text = fields[id->first];
             const auto v = parse_integer<std::int64_t>(text);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pedesis {
@@ -23,6 +24,10 @@ struct XyzFrame {
     std::vector<double> radius;                  // empty without a "radius" column
     std::vector<double> mass;                    // empty without "mass"; +inf: fixed obstacle
     std::vector<std::int64_t> id;                // empty without an "id" column
+    // Every other numeric column (R or I), one number per particle each: a column of
+    // count 1 under its own name, a wider one as name_0, name_1, ... (name_x, _y, _z for
+    // three). NaN is refused; infinities are kept.
+    std::vector<std::pair<std::string, std::vector<double>>> extra;
 
     std::size_t size() const { return position.size(); }
 };

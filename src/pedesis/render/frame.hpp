@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pedesis::render {
@@ -24,6 +25,9 @@ struct Frame {
     std::vector<std::string> species_names; // the same list, in the same order, in every frame
     std::vector<Vec3> velocity;             // empty when the source stores none
     std::vector<Vec3> director;             // empty when the source stores none
+    // Other numbers per particle that the file stores, by name, size() values each:
+    // mass, id, and any column of the user's own (extended XYZ).
+    std::vector<std::pair<std::string, std::vector<double>>> scalars;
 
     std::size_t size() const { return position.size(); }
 };

@@ -59,6 +59,7 @@ class GsdSource final : public FrameSource {
         f.species = g.type_id;
         f.species_names = g.types;
         if (g.velocity_stored) f.velocity = g.velocity;
+        f.scalars.emplace_back("mass", g.mass);
         if (g.orientation_stored) {
             f.director.reserve(g.size());
             for (const auto& q : g.orientation) f.director.push_back(rotated_x_axis(q));

@@ -45,6 +45,10 @@ class XyzSource final : public FrameSource {
         f.position = x.position;
         f.radius = x.radius.empty() ? std::vector<double>(x.size(), default_radius) : x.radius;
         f.velocity = x.velocity;
+        if (!x.mass.empty()) f.scalars.emplace_back("mass", x.mass);
+        if (!x.id.empty())
+            f.scalars.emplace_back("id", std::vector<double>(x.id.begin(), x.id.end()));
+        f.scalars.insert(f.scalars.end(), x.extra.begin(), x.extra.end());
 
         // Species indices by first appearance over the whole trajectory, so a species keeps
         // its colour in every frame.

@@ -149,6 +149,26 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
+    // restitution (particle-particle) and, in a box with walls, wall_restitution: changed
+    // between two collisions. The engine has no steps, so a change is tied to its time
+    // (SteeringDesk).
+    std::vector<std::pair<std::string, double>> steerable() const override {
+        std::vector<std::pair<std::string, double>> out{
+            {"restitution", engine_->params().restitution}};
+        if (engine_->box().any_wall())
+            out.emplace_back("wall_restitution", engine_->params().wall_restitution);
+        return out;
+    }
+
+    void steer(const std::string& name, double value) override {
+        if (name == "restitution")
+            engine_->set_restitution(value);
+        else if (name == "wall_restitution" && engine_->box().any_wall())
+            engine_->set_wall_restitution(value);
+        else
+            Base::steer(name, value);
+    }
+
   private:
     static const char* reason_name(StopReason reason) {
         return reason == StopReason::time         ? "time"

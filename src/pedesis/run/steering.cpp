@@ -1,12 +1,14 @@
 #include "pedesis/run/steering.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace pedesis {
@@ -64,7 +66,7 @@ SteeringDesk::SteeringDesk(Run& run, std::filesystem::path record,
                                          "change",
                                          c.parameter));
     // a restart: what was changed before the checkpoint holds now
-    while (next_replay_ < replay_.size() && replay_[next_replay_].step <= run_.step()) {
+    while (next_replay_ < replay_.size() && due(replay_[next_replay_])) {
         apply(replay_[next_replay_]);
         ++next_replay_;
     }
@@ -79,8 +81,14 @@ SteeringDesk::~SteeringDesk() {
     }
 }
 
+void SteeringDesk::run_ended() {
+    std::lock_guard lock(mutex_);
+    ended_ = true;
+}
+
 std::string SteeringDesk::request(const std::string& parameter, double value) {
     std::lock_guard lock(mutex_);
+    if (ended_) return "the run has ended: nothing changes any more";
     const bool known = std::any_of(values_.begin(), values_.end(),
                                    [&](const auto& v) { return v.first == parameter; });
     if (!known) {
@@ -92,6 +100,9 @@ std::string SteeringDesk::request(const std::string& parameter, double value) {
     if (!std::isfinite(value)) return "the value must be a finite number";
     if (parameter == "temperature" && value < 0.0)
         return fmt::format("temperature must be >= 0 (got {})", value);
+    if ((parameter == "restitution" || parameter == "wall_restitution") &&
+        !(value >= 0.0 && value <= 1.0))
+        return fmt::format("{} must lie in [0, 1] (got {})", parameter, value);
     requests_.emplace_back(parameter, value);
     return "";
 }
@@ -122,8 +133,34 @@ void SteeringDesk::write_record() {
     unwritten_.clear();
 }
 
+bool SteeringDesk::due(const SteeringChange& c) const {
+    return run_.has_steps() ? c.step <= run_.step() : c.time <= run_.time();
+}
+
+void SteeringDesk::replay_until_done() {
+    while (next_replay_ < replay_.size() && !run_.closed()) {
+        const std::size_t k = next_replay_;
+        const SteeringChange c = replay_[k];
+        if (!due(c)) {
+            const char* stopped =
+                run_.has_steps() ? run_.advance(c.step)
+                                 : run_.advance(std::numeric_limits<std::uint64_t>::max(), c.time);
+            if (stopped) return; // the run ended first
+            // a stepped run short of the step was interrupted; a run without steps that
+            // stopped within rounding of the time (a trigger's) has reached it
+            if (run_.has_steps() ? !due(c) : interrupt_requested()) return;
+        }
+        // (the every-step operation may have applied it inside advance already)
+        if (next_replay_ == k) {
+            apply(c);
+            ++next_replay_;
+            write_record();
+        }
+    }
+}
+
 void SteeringDesk::apply_due() {
-    while (next_replay_ < replay_.size() && replay_[next_replay_].step <= run_.step()) {
+    while (next_replay_ < replay_.size() && due(replay_[next_replay_])) {
         apply(replay_[next_replay_]);
         ++next_replay_;
     }

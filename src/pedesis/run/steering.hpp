@@ -1,8 +1,11 @@
 #pragma once
-// Changes of a running simulation's parameters (temperature, alpha, J: RunEngine::steer)
-// asked for while it runs (`pedesis run --view`, from the page) or replayed from a record
-// (`pedesis run --steering FILE`). Each is applied between two steps, at the step it is
-// recorded with, so that replaying the record reproduces the run bit for bit.
+// Changes of a running simulation's parameters (temperature, alpha, J, restitution:
+// RunEngine::steer) asked for while it runs (`pedesis run --view`, from the page) or
+// replayed from a record (`pedesis run --steering FILE`). Each is applied between two
+// steps, at the step it is recorded with, so that replaying the record reproduces the run
+// bit for bit. The event engine has no steps (its step is the collision count, which can
+// stand still): there a change is tied to its time, and the replay stops the run at that
+// exact time (replay_until).
 //
 // The record, steering.csv in the run directory: a header `step,time,parameter,value`,
 // then one row per change in the order applied, numbers in their shortest exact form.
@@ -42,6 +45,8 @@ class SteeringDesk {
     // why not ("" when queued). Refused: unknown parameters, non-finite values, negative
     // temperatures.
     std::string request(const std::string& parameter, double value);
+    // After the run has ended, every request is refused (the page may stay open).
+    void run_ended();
     // The parameters and their values as last applied, from any thread.
     std::vector<std::pair<std::string, double>> parameters() const;
 
@@ -50,7 +55,13 @@ class SteeringDesk {
     // and records each.
     void apply_due();
 
+    // Runs the simulation up to each replayed change still ahead and applies it there,
+    // so that it lands at its recorded step or time even where no trigger stops the run
+    // (the event engine, or a change from Python between two rows); then returns.
+    void replay_until_done();
+
   private:
+    bool due(const SteeringChange& change) const;
     void apply(const SteeringChange& change);
     void write_record(); // the rows applied since the last call
 
@@ -60,9 +71,10 @@ class SteeringDesk {
     std::string unwritten_; // rows applied, not yet in the record
     std::vector<SteeringChange> replay_;
     std::size_t next_replay_ = 0;
-    mutable std::mutex mutex_; // requests_ and values_
+    mutable std::mutex mutex_; // requests_, values_ and ended_
     std::deque<std::pair<std::string, double>> requests_;
     std::vector<std::pair<std::string, double>> values_;
+    bool ended_ = false;
 };
 
 } // namespace pedesis

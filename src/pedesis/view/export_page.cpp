@@ -60,13 +60,18 @@ void export_page(const ExportOptions& o) {
 
     const render::Frame first = source.frame(0);
     std::vector<Field> fields = {Field::position, Field::species, Field::radius};
-    if (frame_has(first, Field::speed)) fields.push_back(Field::speed);
-    if (frame_has(first, Field::director))
-        fields.insert(fields.end(), {Field::angle, Field::director});
-    // 4 bytes a number: 3 + 1 + 1 for position, species and radius, 1 for speed, 1 + 3
-    // for angle and director; base64 makes 4 of every 3
-    std::uint64_t numbers =
-        5 + (frame_has(first, Field::speed) ? 1 : 0) + (frame_has(first, Field::director) ? 4 : 0);
+    if (frame_has(first, Field::director)) fields.push_back(Field::director);
+    // to colour by: speed, angle and the file's own columns; the velocity components, the
+    // energy, mass and id would double the page's size (the served page has them)
+    std::vector<std::string> colour_by = colour_fields(first);
+    std::erase_if(colour_by, [](const std::string& name) {
+        return name == "vx" || name == "vy" || name == "vz" || name == "kinetic_energy" ||
+               name == "mass" || name == "id" || name == "radius"; // (radius: a field)
+    });
+    // 4 bytes a number: 3 + 1 + 1 for position, species and radius, 3 for a director, 1
+    // for each number to colour by; base64 makes 4 of every 3
+    const std::uint64_t numbers =
+        5 + (frame_has(first, Field::director) ? 3 : 0) + colour_by.size();
     const std::uint64_t estimate = chosen.size() * first.size() * numbers * 4 * 4 / 3;
     if (estimate > o.max_bytes) {
         const std::uint64_t per_frame = std::max<std::uint64_t>(estimate / chosen.size(), 1);
@@ -82,6 +87,8 @@ void export_page(const ExportOptions& o) {
     nlohmann::json data;
     data["info"] = run_info(source, first, o.run_dir);
     data["info"]["frames"] = chosen.size();
+    data["info"]["colour_by"] = colour_by;
+    data["info"]["colour_by"].push_back("radius");
     data["log"] = read_log(o.run_dir);
     nlohmann::json& out = data["frames"];
     out = nlohmann::json::array();
@@ -90,12 +97,19 @@ void export_page(const ExportOptions& o) {
         nlohmann::json frame = {{"index", k},
                                 {"time", f.time ? nlohmann::json(*f.time) : nlohmann::json()},
                                 {"step", f.step ? nlohmann::json(*f.step) : nlohmann::json()}};
+        const auto lacks = [&](std::string_view what) {
+            return InputError(fmt::format("pedesis view --export: frame {} of {} lacks the {} "
+                                          "that frame 0 has",
+                                          k, source.description(), what));
+        };
         for (const Field field : fields) {
-            if (!frame_has(f, field))
-                throw InputError(fmt::format("pedesis view --export: frame {} of {} lacks what "
-                                             "frame 0 has (velocities or directors)",
-                                             k, source.description()));
+            if (!frame_has(f, field)) throw lacks(field_name(field));
             frame[std::string(field_name(field))] = base64(frame_bytes(f, field));
+        }
+        for (const std::string& name : colour_by) {
+            const std::optional<std::string> bytes = colour_field_bytes(f, name);
+            if (!bytes) throw lacks(name);
+            frame[name] = base64(*bytes);
         }
         out.push_back(std::move(frame));
     }

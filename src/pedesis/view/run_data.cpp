@@ -23,8 +23,10 @@ nlohmann::json run_info(render::FrameSource& source, const render::Frame& f,
         species.push_back({{"name", f.species_names[s]}, {"radius", radius}});
     }
     nlohmann::json fields = {"position", "radius", "species"};
-    if (frame_has(f, Field::speed)) fields.push_back("speed");
-    if (frame_has(f, Field::director)) fields.insert(fields.end(), {"angle", "director"});
+    if (frame_has(f, Field::director)) fields.push_back("director");
+    const std::vector<std::string> colour_by = colour_fields(f);
+    for (const std::string& c : colour_by)
+        if (c != "radius") fields.push_back(c);
     std::filesystem::path dir = std::filesystem::absolute(run_dir).lexically_normal();
     if (dir.filename().empty()) dir = dir.parent_path(); // "runs/demo/"
     return {{"run", dir.filename().string()},
@@ -36,7 +38,8 @@ nlohmann::json run_info(render::FrameSource& source, const render::Frame& f,
             {"frames", source.frames()},
             {"particles", f.size()},
             {"species", species},
-            {"fields", fields}};
+            {"fields", fields},
+            {"colour_by", colour_by}};
 }
 
 // log.csv as columns and rows of numbers ("inf" and "nan", which pandas writes and reads,

@@ -118,7 +118,7 @@ struct ViewServer::Impl {
         server.Get("/api/log", [this](const httplib::Request&, httplib::Response& res) {
             res.set_content(read_log(options.run_dir).dump(), "application/json");
         });
-        server.Get(R"(/api/frame/(\d{1,18})/(\w+))",
+        server.Get(R"(/api/frame/(\d{1,18})/([^/]{1,200}))",
                    [this](const httplib::Request& req, httplib::Response& res) {
                        answer_frame(req, res);
                    });
@@ -136,13 +136,11 @@ struct ViewServer::Impl {
                 options.page_dir.string()));
     }
 
+    // A structural field (position, radius, species, director) or a number to colour by
+    // (frame_arrays.hpp), by name.
     void answer_frame(const httplib::Request& req, httplib::Response& res) {
-        const std::optional<Field> field = field_named(req.matches[2].str());
-        if (!field)
-            return send_error(res, 400,
-                              fmt::format("unknown field '{}' (known: position, radius, species, "
-                                          "speed, angle, director)",
-                                          req.matches[2].str()));
+        const std::string name = req.matches[2].str();
+        const std::optional<Field> field = field_named(name);
         const std::size_t k = std::stoull(req.matches[1].str());
         std::lock_guard lock(mutex);
         try {
@@ -152,14 +150,24 @@ struct ViewServer::Impl {
                                   fmt::format("frame {} is past the end: the run has {} frames", k,
                                               source ? source->frames() : 0));
             const render::Frame& f = frame(k);
-            if (!frame_has(f, *field))
-                return send_error(res, 404,
-                                  fmt::format("the frames of this run store no {}",
-                                              *field == Field::speed ? "velocities" : "directors"));
+            std::optional<std::string> bytes;
+            if (field && frame_has(f, *field))
+                bytes = frame_bytes(f, *field);
+            else if (!field)
+                bytes = colour_field_bytes(f, name);
+            if (!bytes) {
+                std::string known = "position, radius, species";
+                if (frame_has(f, Field::director)) known += ", director";
+                for (const std::string& c : colour_fields(f))
+                    if (c != "radius") known += ", " + c;
+                return send_error(
+                    res, 404,
+                    fmt::format("frame {} has no field '{}' (it has: {})", k, name, known));
+            }
             res.set_header("X-Pedesis-Time", f.time ? fmt::format("{}", *f.time) : "");
             res.set_header("X-Pedesis-Step", f.step ? std::to_string(*f.step) : "");
             res.set_header("Access-Control-Expose-Headers", "X-Pedesis-Time, X-Pedesis-Step");
-            res.set_content(frame_bytes(f, *field), "application/octet-stream");
+            res.set_content(*bytes, "application/octet-stream");
         } catch (const InputError& e) {
             send_error(res, 422, e.what());
         }

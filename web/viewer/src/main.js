@@ -1,7 +1,8 @@
 // The page of `pedesis view` (docs/view.md): a run's particles drawn with three.js
 // (one point sprite per particle, a disk or a shaded sphere at its true radius: one
 // vertex a particle, so that 10^6 draw in software WebGL), a time slider
-// and playback over the frames, colour by species, speed or polarity angle, director
+// and playback over the frames, colour by species or any number per particle (speed,
+// polarity angle, energy, a column of the file's own) with a colour bar, director
 // arrows, and the run's log plotted with uPlot beside it, with a cursor at the frame's
 // time. Frames come from the server as binary typed arrays (src/pedesis/view), and only
 // a window of frames around the cursor is kept.
@@ -16,6 +17,11 @@ const KEEP = 6; // frames kept on each side of the cursor
 const AHEAD = 3; // frames fetched ahead while playing
 const PALETTE = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2',
   '#7f7f7f', '#bcbd22', '#17becf'];
+// How the colour menu and bar name the numbers the server derives (others: their names).
+const LABELS = { speed: 'speed |v|', angle: 'polarity angle', kinetic_energy: 'kinetic energy m v²/2',
+  vx: 'velocity x', vy: 'velocity y', vz: 'velocity z' };
+// A name from a file, shown as text.
+const escapeHtml = (text) => String(text).replace(/[&<>"']/g, (c) => `&#${c.charCodeAt(0)};`);
 // viridis at 0, 1/4, 1/2, 3/4, 1
 const VIRIDIS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
 
@@ -33,10 +39,11 @@ function fromBase64(text, Type) {
 function exported(path, Type) {
   if (path === 'api/info') return EXPORTED.info;
   if (path === 'api/log') return EXPORTED.log;
-  const m = path.match(/^api\/frame\/(\d+)\/(\w+)$/);
+  const m = path.match(/^api\/frame\/(\d+)\/([^/]+)$/);
   const f = m ? EXPORTED.frames[Number(m[1])] : null;
-  if (!f || !f[m[2]]) throw new Error(`${path}: not in this exported page`);
-  return { data: fromBase64(f[m[2]], Type), time: f.time === null ? '' : String(f.time),
+  const name = m ? decodeURIComponent(m[2]) : '';
+  if (!f || !f[name]) throw new Error(`${path}: not in this exported page`);
+  return { data: fromBase64(f[name], Type), time: f.time === null ? '' : String(f.time),
     step: f.step === null ? '' : String(f.step) };
 }
 
@@ -239,7 +246,9 @@ class Viewer {
     }
     const wanted = [this.needsField(), this.arrows ? 'director' : null].filter((x) => x);
     for (const name of wanted)
-      if (!f.fields[name]) f.fields[name] = (await fetchArray(`api/frame/${k}/${name}`, Float32Array)).data;
+      if (!f.fields[name]) {
+        f.fields[name] = (await fetchArray(`api/frame/${k}/${encodeURIComponent(name)}`, Float32Array)).data;
+      }
     return f;
   }
 
@@ -267,19 +276,22 @@ class Viewer {
     this.ensureCapacity(n);
     const c = new THREE.Color(), rgb = {};
     const field = this.needsField() ? f.fields[this.needsField()] : null;
+    // the colour bar spans this frame's finite values (speed and energy from 0)
     let lo = 0, hi = 1;
-    if (this.mode === 'speed') {
-      hi = 0;
-      for (let i = 0; i < n; ++i) hi = Math.max(hi, field[i]);
-      hi = hi || 1;
+    if (field && this.mode !== 'angle') {
+      lo = this.mode === 'speed' || this.mode === 'kinetic_energy' ? 0 : Infinity;
+      hi = -Infinity;
+      for (let i = 0; i < n; ++i)
+        if (Number.isFinite(field[i])) { lo = Math.min(lo, field[i]); hi = Math.max(hi, field[i]); }
+      if (!(hi > lo)) { lo = Number.isFinite(lo) ? lo - 0.5 : 0; hi = lo + 1; }
     }
     const g = this.mesh.geometry;
     g.attributes.position.array.set(f.pos.subarray(0, 3 * n));
     g.attributes.radius.array.set(f.radius.subarray(0, n));
     const tint = g.attributes.tint.array;
     for (let i = 0; i < n; ++i) {
-      if (this.mode === 'speed') viridis((field[i] - lo) / (hi - lo), c);
-      else if (this.mode === 'angle') wheel(field[i], c);
+      if (this.mode === 'angle') wheel(field[i], c);
+      else if (field) viridis((field[i] - lo) / (hi - lo), c);
       else c.setStyle(PALETTE[f.species[i] % PALETTE.length], THREE.SRGBColorSpace);
       c.getRGB(rgb, THREE.SRGBColorSpace);
       tint[3 * i] = rgb.r;
@@ -322,12 +334,12 @@ class Viewer {
     const stops = [];
     const c = new THREE.Color();
     for (let k = 0; k <= 10; ++k) {
-      if (this.mode === 'speed') viridis(k / 10, c); else wheel(-Math.PI + (2 * Math.PI * k) / 10, c);
+      if (this.mode !== 'angle') viridis(k / 10, c); else wheel(-Math.PI + (2 * Math.PI * k) / 10, c);
       stops.push(`#${c.getHexString(THREE.SRGBColorSpace)}`);
     }
-    const [a, b] = this.mode === 'speed' ? [lo.toPrecision(3), hi.toPrecision(3)] : ['−π', 'π'];
+    const [a, b] = this.mode !== 'angle' ? [lo.toPrecision(3), hi.toPrecision(3)] : ['−π', 'π'];
     bar.style.display = 'block';
-    bar.innerHTML = `${this.mode === 'speed' ? 'speed |v|' : 'polarity angle'}` +
+    bar.innerHTML = escapeHtml(LABELS[this.mode] || this.mode) +
       `<div class="bar" style="background:linear-gradient(to right,${stops.join(',')})"></div>` +
       `<div class="ends"><span>${a}</span><span>${b}</span></div>`;
   }
@@ -437,8 +449,8 @@ async function main() {
   viewer.onFrame = () => { if (plot.plot) plot.plot.redraw(false); };
 
   const colour = $('colour');
-  colour.innerHTML = ['species', 'speed', 'angle'].filter((m) => m === 'species' || info.fields.includes(m))
-    .map((m) => `<option value="${m}">${m === 'angle' ? 'polarity angle' : m}</option>`).join('');
+  colour.innerHTML = ['species', ...(info.colour_by || [])]
+    .map((m) => `<option value="${escapeHtml(m)}">${escapeHtml(LABELS[m] || m)}</option>`).join('');
   colour.addEventListener('change', () => viewer.setColour(colour.value).catch(report));
   $('arrows-label').style.display = info.fields.includes('director') ? '' : 'none';
   $('arrows').addEventListener('change', (e) => viewer.setArrows(e.target.checked).catch(report));
@@ -525,7 +537,8 @@ function steeringControls(parameters, token) {
   box.innerHTML = '<h3>change the run</h3>' + (token ? ''
     : '<p>read-only: open the address <code>pedesis run --view</code> printed (with its token) to change the run</p>');
   for (const { name, value } of parameters) {
-    const top = Math.max(4 * Math.abs(value), 1);
+    // a restitution coefficient lies in [0, 1]; the others may grow well past their start
+    const top = name.endsWith('restitution') ? 1 : Math.max(4 * Math.abs(value), 1);
     const lo = name === 'J' ? -top : 0;
     const row = document.createElement('label');
     row.innerHTML = `${name} <input type="range" id="steer-${name}" min="${lo}" max="${top}" ` +
