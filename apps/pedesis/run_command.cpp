@@ -53,7 +53,6 @@ class LiveView {
         view::ViewOptions o;
         o.run_dir = dir;
         o.port = port;
-        o.page_dir = PEDESIS_VIEWER_DIR;
         o.wait_for_frames = true;
         if (desk) {
             token_ = random_token();

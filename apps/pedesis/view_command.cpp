@@ -51,7 +51,6 @@ void add_view_command(CLI::App& app) {
         if (!a->export_to.empty()) {
             view::ExportOptions e;
             e.run_dir = a->run_dir;
-            e.page_dir = PEDESIS_VIEWER_DIR;
             e.output = a->export_to;
             e.every = a->every;
             view::export_page(e);
@@ -64,7 +63,6 @@ void add_view_command(CLI::App& app) {
         o.run_dir = a->run_dir;
         o.host = a->host;
         o.port = a->port;
-        o.page_dir = PEDESIS_VIEWER_DIR;
         view::ViewServer server(o);
         if (!is_loopback(a->host))
             std::cerr << fmt::format(

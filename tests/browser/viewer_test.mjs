@@ -75,24 +75,73 @@ function startServer(dir) {
   });
 }
 
+// Puts window.decodePng(url) in the page: a PNG data URL's RGBA bytes, width and height.
+async function installPngDecoder(page) {
+  await page.evaluate(() => {
+    window.decodePng = async (url) => {
+      const img = new Image();
+      await new Promise((done) => { img.onload = done; img.src = url; });
+      const c = document.createElement('canvas');
+      c.width = img.width;
+      c.height = img.height;
+      const ctx = c.getContext('2d');
+      ctx.drawImage(img, 0, 0);
+      return { data: ctx.getImageData(0, 0, img.width, img.height).data, width: img.width, height: img.height };
+    };
+  });
+}
+
 // The PNG of the screenshot button's path (the canvas as image/png), read back at (x, y).
-async function pngPixels(page, points) {
-  return page.evaluate(async (pts) => {
-    const canvas = document.querySelector('#view canvas');
-    window.pedesisView.renderNow();
-    const url = canvas.toDataURL('image/png');
-    const img = new Image();
-    await new Promise((done) => { img.onload = done; img.src = url; });
-    const copy = document.createElement('canvas');
-    copy.width = img.width;
-    copy.height = img.height;
-    const ctx = copy.getContext('2d');
-    ctx.drawImage(img, 0, 0);
+async function pngPixels(page, points, whole = false) {
+  await installPngDecoder(page);
+  return page.evaluate(async ([pts, whole]) => {
+    const canvas = document.querySelector('#view canvas[style*="relative"]'); // WebGL's
+    const url = window.pedesisView.pictureUrl();
+    const { data, width, height } = await window.decodePng(url);
     const rect = canvas.getBoundingClientRect();
-    const sx = img.width / rect.width, sy = img.height / rect.height;
-    return pts.map(({ x, y }) => Array.from(
-      ctx.getImageData(Math.floor((x - rect.left) * sx), Math.floor((y - rect.top) * sy), 1, 1).data));
-  }, points);
+    const sx = width / rect.width, sy = height / rect.height;
+    const pixels = pts.map(({ x, y }) => {
+      const at = 4 * (Math.floor((y - rect.top) * sy) * width + Math.floor((x - rect.left) * sx));
+      return Array.from(data.slice(at, at + 4));
+    });
+    return whole ? { pixels, image: url } : pixels;
+  }, [points, whole]);
+}
+
+// The share of pixels (any channel off by more than 6 of 255) in which two PNG data URLs
+// differ, decoded in the page.
+async function pngDifference(page, a, b) {
+  await installPngDecoder(page);
+  return page.evaluate(async ([a, b]) => {
+    const [x, y] = [(await window.decodePng(a)).data, (await window.decodePng(b)).data];
+    if (x.length !== y.length) return `images of ${x.length / 4} and ${y.length / 4} pixels`;
+    let differ = 0;
+    for (let k = 0; k < x.length; k += 4)
+      if (Math.abs(x[k] - y[k]) > 6 || Math.abs(x[k + 1] - y[k + 1]) > 6 || Math.abs(x[k + 2] - y[k + 2]) > 6) differ += 1;
+    return differ / (x.length / 4);
+  }, [a, b]);
+}
+
+// In a 2D view: the PNG's pixel at the projected centre of each particle of `free` (no
+// other covers it) has its species' colour. Returns the PNG as a data URL.
+async function speciesAtCentres(page, name, way, f, free, names) {
+  // one size for the view in both pages (the panels beside it settle at their own pace)
+  await page.addStyleTag({ content: '#view { width: 800px !important; height: 520px !important; flex: none !important; }' });
+  await page.waitForFunction(() => {
+    const c = document.querySelector('#view canvas[style*="relative"]');
+    return c.width === 800 && c.height === 520;
+  }, null, { timeout: 10000 });
+  const points = await page.evaluate((ids) => ids.map((i) => window.pedesisView.project(i)), free);
+  const { pixels, image } = await pngPixels(page, points, true);
+  let matching = 0;
+  free.forEach((i, k) => {
+    const want = hexToRgb(PALETTE[names.indexOf(f.species[i])]);
+    if (want.every((c, a) => Math.abs(c - pixels[k][a]) <= 6)) matching += 1;
+    else console.log(`     particle ${i}: pixel ${pixels[k].slice(0, 3)} against ${want}`);
+  });
+  check(free.length >= 10 && matching === free.length,
+    `${name} (${way}): ${matching} of ${free.length} uncovered particles show their species' colour at their centre in the PNG`);
+  return image;
 }
 
 function hexToRgb(h) {
@@ -142,16 +191,23 @@ async function checkRun(browser, name, dimension, dir) {
         }
         if (!covered) free.push(i);
       }
-      const points = await page.evaluate((ids) => ids.map((i) => window.pedesisView.project(i)), free);
-      const pixels = await pngPixels(page, points);
-      let matching = 0;
-      free.forEach((i, k) => {
-        const want = hexToRgb(PALETTE[names.indexOf(f.species[i])]);
-        if (want.every((c, a) => Math.abs(c - pixels[k][a]) <= 6)) matching += 1;
-        else console.log(`     particle ${i}: pixel ${pixels[k].slice(0, 3)} against ${want}`);
-      });
-      check(free.length >= 10 && matching === free.length,
-        `${name}: ${matching} of ${free.length} uncovered particles show their species' colour at their centre in the PNG`);
+      // software WebGL: the page draws the disks on the CPU; ?draw=gl draws the sprites
+      check(await page.evaluate(() => window.pedesisView.drawsOnCpu()) === true,
+        `${name}: in software WebGL the page draws the 2D disks on the CPU`);
+      const cpuImage = await speciesAtCentres(page, name, 'CPU', f, free, names);
+      const gl = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+      await gl.goto(url + '?draw=gl');
+      await gl.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+      // (the plot beside the view changes the layout when it arrives: wait for it, as above)
+      await gl.waitForFunction(() => window.pedesisView.logPoints() > 0, null, { timeout: 60000 });
+      await gl.evaluate((k) => window.pedesisView.setFrame(k), last);
+      check(await gl.evaluate(() => window.pedesisView.drawsOnCpu()) === false, `${name}: ?draw=gl draws sprites`);
+      const glImage = await speciesAtCentres(gl, name, 'sprites', f, free, names);
+      // the two ways draw the same picture, up to the edge pixels of disks
+      const share = await pngDifference(gl, cpuImage, glImage);
+      await gl.close();
+      check(typeof share === 'number' && share < 0.02,
+        `${name}: the CPU's and the sprites' images differ in ${typeof share === 'number' ? (100 * share).toFixed(2) : share} % of the pixels (edges)`);
       if (screenshotOut && name === 'soft 2D') {
         await page.evaluate(() => window.pedesisView.renderNow());
         await page.screenshot({ path: screenshotOut });

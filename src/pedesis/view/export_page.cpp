@@ -4,14 +4,14 @@
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/render/run_directory.hpp"
 #include "pedesis/view/frame_arrays.hpp"
+#include "pedesis/view/page_files.hpp"
 #include "pedesis/view/run_data.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <openssl/evp.h>
 
-#include <fstream>
-#include <iterator>
+#include <optional>
 #include <sstream>
 
 namespace pedesis::view {
@@ -28,14 +28,10 @@ std::string base64(const std::string& bytes) {
     return out;
 }
 
-std::string read_text(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in)
-        throw InputError(fmt::format(
-            "pedesis view: the viewer page is not built ({} is missing): it needs Node.js and "
-            "npm at build time; install them (make deps) and build again (make build)",
-            file.string()));
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+std::string page_text(std::string_view name) {
+    const std::optional<PageFile> file = page_file(name);
+    if (!file) throw InputError(page_missing());
+    return std::string(file->bytes);
 }
 
 void replace_once(std::string& text, const std::string& what, const std::string& with) {
@@ -48,9 +44,9 @@ void replace_once(std::string& text, const std::string& what, const std::string&
 } // namespace
 
 void export_page(const ExportOptions& o) {
-    std::string html = read_text(o.page_dir / "index.html");
-    const std::string script = read_text(o.page_dir / "viewer.js");
-    const std::string style = read_text(o.page_dir / "viewer.css");
+    std::string html = page_text("index.html");
+    const std::string script = page_text("viewer.js");
+    const std::string style = page_text("viewer.css");
     render::OpenedRun run = render::open_run_directory(o.run_dir, render::SourceKind::automatic);
     render::FrameSource& source = *run.source;
     const std::size_t frames = source.frames();

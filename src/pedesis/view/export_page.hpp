@@ -8,7 +8,6 @@ namespace pedesis::view {
 
 struct ExportOptions {
     std::filesystem::path run_dir;
-    std::filesystem::path page_dir; // the built page (index.html, viewer.js, viewer.css)
     std::filesystem::path output;
     std::size_t every = 1; // every k-th frame (the last is always kept)
     // Larger pages take browsers tens of seconds and gigabytes to open.
@@ -16,7 +15,7 @@ struct ExportOptions {
 };
 
 // Writes the page (atomically: a file under the final name is complete). InputError if
-// the run has no trajectory, the page is not built, or the data would pass max_bytes
+// the run has no trajectory, the build has no page, or the data would pass max_bytes
 // (the message gives the estimate and the --every that would fit).
 void export_page(const ExportOptions& options);
 

@@ -3,6 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/render/run_directory.hpp"
 #include "pedesis/view/frame_arrays.hpp"
+#include "pedesis/view/page_files.hpp"
 #include "pedesis/view/run_data.hpp"
 
 #include <fmt/format.h>
@@ -129,11 +130,14 @@ struct ViewServer::Impl {
             if (res.body.empty())
                 send_error(res, res.status, fmt::format("no such resource: {}", req.path));
         });
-        if (!server.set_mount_point("/", options.page_dir.string()))
-            throw InputError(fmt::format(
-                "pedesis view: the viewer page is not built ({} is missing): it needs Node.js "
-                "and npm at build time; install them (make deps) and build again (make build)",
-                options.page_dir.string()));
+        if (!page_file("index.html")) throw InputError(page_missing());
+        // the page, from the binary (page_files.hpp)
+        server.Get(R"(/(|index\.html|viewer\.js|viewer\.css))",
+                   [](const httplib::Request& req, httplib::Response& res) {
+                       const std::string name = req.matches[1].str();
+                       const PageFile file = *page_file(name.empty() ? "index.html" : name);
+                       res.set_content(file.bytes.data(), file.bytes.size(), file.content_type);
+                   });
     }
 
     // A structural field (position, radius, species, director) or a number to colour by

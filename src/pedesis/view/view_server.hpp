@@ -3,7 +3,7 @@
 // frames (binary typed arrays, frame_arrays.hpp) and log. Read-only: it serves what the
 // run directory holds when asked, so a run still being written shows its new frames.
 //
-//   GET /                      the page (index.html, viewer.js, viewer.css of page_dir)
+//   GET /                      the page (index.html, viewer.js, viewer.css: page_files.hpp)
 //   GET /api/info              JSON: dimension, box, frames, particles, species, fields
 //   GET /api/frame/K/FIELD     bytes of FIELD of frame K (headers X-Pedesis-Time, -Step)
 //   GET /api/log               JSON: log.csv's columns and rows (null for inf and nan)
@@ -35,8 +35,7 @@ struct SteeringHooks {
 struct ViewOptions {
     std::filesystem::path run_dir;
     std::string host = "127.0.0.1";
-    int port = 8765;                // 0: any free port
-    std::filesystem::path page_dir; // the built page
+    int port = 8765; // 0: any free port
     // Serve a run directory that has no trajectory yet (`pedesis run --view`): the page
     // waits for the first frame. Otherwise a directory without one is an InputError.
     bool wait_for_frames = false;

@@ -79,6 +79,17 @@ function wheel(angle, out) {
   return out.setHSL((angle / (2 * Math.PI) + 1) % 1, 0.85, 0.5, THREE.SRGBColorSpace);
 }
 
+// Whether to draw 2D disks on the CPU: where WebGL is software (SwiftShader, llvmpipe: no
+// GPU), unless the address says ?draw=gl (or ?draw=cpu to force it).
+function drawsOnCpu(renderer) {
+  const asked = new URLSearchParams(window.location.search).get('draw');
+  if (asked === 'cpu' || asked === 'gl') return asked === 'cpu';
+  const gl = renderer.getContext();
+  const debug = gl.getExtension('WEBGL_debug_renderer_info');
+  const name = debug ? String(gl.getParameter(debug.UNMASKED_RENDERER_WEBGL)) : '';
+  return /swiftshader|llvmpipe|softpipe|software/i.test(name);
+}
+
 class Viewer {
   constructor(info) {
     this.info = info;
@@ -92,11 +103,21 @@ class Viewer {
     this.wanted = 0; // the last frame asked for: a slower answer for another is dropped
 
     const view = $('view');
-    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true, alpha: true });
     this.renderer.setPixelRatio(window.devicePixelRatio);
-    this.renderer.setClearColor(0xffffff);
+    this.renderer.domElement.style.position = 'relative'; // over the disks' canvas
     view.prepend(this.renderer.domElement);
     this.scene = new THREE.Scene();
+    // In 2D without a GPU the page draws the disks itself, on a canvas under WebGL's,
+    // which then draws only the box and the director lines on a transparent ground.
+    this.cpuDisks = this.dim === 2 && drawsOnCpu(this.renderer);
+    this.renderer.setClearColor(0xffffff, this.cpuDisks ? 0 : 1);
+    if (this.cpuDisks) {
+      this.disksCanvas = document.createElement('canvas');
+      this.disksCanvas.style.cssText = 'position:absolute;left:0;top:0;width:100%;height:100%';
+      view.prepend(this.disksCanvas);
+      this.disksImage = null;
+    }
 
     const L = info.box_length;
     const lo = info.box_lo;
@@ -225,7 +246,69 @@ class Viewer {
   render() {
     this.controls.update();
     this.updatePointScale();
+    if (this.cpuDisks && this.mesh) this.drawDisksOnCpu();
     this.renderer.render(this.scene, this.camera);
+  }
+
+  // The disks drawn on the CPU into the canvas under WebGL's: what the sprites would draw
+  // (each pixel whose centre lies within a disk takes its colour, the later particle on
+  // top, at least the pixel of the centre), from the same buffers. Software WebGL spends
+  // about a microsecond on each sprite; this loop a small fraction of that (docs/view.md,
+  // Speed).
+  drawDisksOnCpu() {
+    const size = this.renderer.getDrawingBufferSize(new THREE.Vector2());
+    const W = size.x, H = size.y;
+    const canvas = this.disksCanvas;
+    if (canvas.width !== W || canvas.height !== H || !this.disksImage) {
+      canvas.width = W;
+      canvas.height = H;
+      this.disksImage = canvas.getContext('2d').createImageData(W, H);
+    }
+    this.mesh.visible = false;
+    const pixels = new Uint32Array(this.disksImage.data.buffer);
+    pixels.fill(0xffffffff); // white
+    const cam = this.camera;
+    const x0 = cam.position.x + cam.left / cam.zoom, y0 = cam.position.y + cam.bottom / cam.zoom;
+    const scale = (W * cam.zoom) / (cam.right - cam.left); // pixels per unit (square pixels)
+    const g = this.mesh.geometry;
+    const pos = g.attributes.position.array, rad = g.attributes.radius.array, tint = g.attributes.tint.array;
+    const n = Math.min(g.drawRange.count, this.capacity);
+    for (let i = 0; i < n; ++i) {
+      // y counts pixels up from the bottom of the view; the image's rows go down
+      const cx = (pos[3 * i] - x0) * scale, cy = (pos[3 * i + 1] - y0) * scale;
+      const r = Math.max(rad[i] * scale, 0.5);
+      if (cx + r < 0 || cx - r > W || cy + r < 0 || cy - r > H) continue;
+      const colour = (0xff000000 | (Math.round(255 * tint[3 * i + 2]) << 16) |
+        (Math.round(255 * tint[3 * i + 1]) << 8) | Math.round(255 * tint[3 * i])) >>> 0;
+      const xa = Math.max(0, Math.ceil(cx - r - 0.5)), xb = Math.min(W - 1, Math.floor(cx + r - 0.5));
+      const ya = Math.max(0, Math.ceil(cy - r - 0.5)), yb = Math.min(H - 1, Math.floor(cy + r - 0.5));
+      const r2 = r * r;
+      for (let y = ya; y <= yb; ++y) {
+        const dy = y + 0.5 - cy, row = (H - 1 - y) * W;
+        for (let x = xa; x <= xb; ++x) {
+          const dx = x + 0.5 - cx;
+          if (dx * dx + dy * dy <= r2) pixels[row + x] = colour;
+        }
+      }
+      const px = Math.floor(cx), py = Math.floor(cy);
+      if (px >= 0 && px < W && py >= 0 && py < H) pixels[(H - 1 - py) * W + px] = colour;
+    }
+    canvas.getContext('2d').putImageData(this.disksImage, 0, 0);
+  }
+
+  // The view as one canvas (the screenshot): WebGL's, over the disks' where the CPU draws
+  // them.
+  picture() {
+    this.render();
+    const gl = this.renderer.domElement;
+    if (!this.cpuDisks) return gl;
+    const out = document.createElement('canvas');
+    out.width = gl.width;
+    out.height = gl.height;
+    const ctx = out.getContext('2d');
+    ctx.drawImage(this.disksCanvas, 0, 0);
+    ctx.drawImage(gl, 0, 0);
+    return out;
   }
 
   needsField() {
@@ -462,8 +545,7 @@ async function main() {
     if (e.code === 'Space' && e.target === document.body) { e.preventDefault(); viewer.play().catch(report); }
   });
   $('shot').addEventListener('click', () => {
-    viewer.render();
-    viewer.renderer.domElement.toBlob((blob) => {
+    viewer.picture().toBlob((blob) => {
       const a = document.createElement('a');
       a.href = URL.createObjectURL(blob);
       a.download = `${info.run}_frame${viewer.index}.png`;
@@ -491,6 +573,9 @@ async function main() {
   window.pedesisView = {
     info, frames: () => viewer.frames, frameIndex: () => viewer.index,
     instanceCount: () => viewer.mesh.geometry.drawRange.count,
+    drawsOnCpu: () => viewer.cpuDisks,
+    // the screenshot's canvas, as a PNG data URL
+    pictureUrl: () => viewer.picture().toDataURL('image/png'),
     setFrame: (k) => viewer.show(k), setColour: (m) => viewer.setColour(m),
     drawnPositions: () => {
       const a = viewer.mesh.geometry.attributes.position.array, out = [];
@@ -512,9 +597,13 @@ async function main() {
       const gl = viewer.renderer.getContext(), px = new Uint8Array(4);
       const t0 = performance.now();
       for (let k = 0; k < count; ++k) {
+        // a pan: the camera and its target move together
         viewer.camera.position.x += 1e-3 * viewer.info.box_length[0];
-        viewer.renderer.render(viewer.scene, viewer.camera);
+        viewer.controls.target.x += 1e-3 * viewer.info.box_length[0];
+        viewer.render();
         gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+        // (a pixel read back makes the 2D canvas finish its drawing too)
+        if (viewer.cpuDisks) viewer.disksCanvas.getContext('2d').getImageData(0, 0, 1, 1);
       }
       return (performance.now() - t0) / count;
     },
