@@ -5,4 +5,5 @@ namespace pedesis::python {
 void bind_soft(pybind11::module_& m);
 void bind_gas(pybind11::module_& m);
 void bind_run(pybind11::module_& m);
+void bind_analyze(pybind11::module_& m);
 } // namespace pedesis::python

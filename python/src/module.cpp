@@ -8,4 +8,5 @@ PYBIND11_MODULE(_pedesis, m) {
     pedesis::python::bind_soft(m);
     pedesis::python::bind_gas(m);
     pedesis::python::bind_run(m);
+    pedesis::python::bind_analyze(m);
 }

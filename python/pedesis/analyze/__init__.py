@@ -1,0 +1,31 @@
+"""pedesis.analyze: analysis of particle trajectories, as functions of numpy arrays.
+
+Each function takes positions (an (N, d) array, d = 2 or 3, or (T, N, d) for a
+trajectory) and a :class:`Box`, and returns numpy arrays; plotting is left to the caller.
+Frames come from pedesis run directories or any GSD file through :func:`read_frames`.
+Neighbour searches use scipy's cKDTree (periodic boxes through its ``boxsize``), never an
+O(N^2) loop. Lengths are in the units of the positions; times in those of the frames.
+
+Structure: :func:`rdf` (g(r), per species pair), :func:`structure_factor` (direct, on
+the box's reciprocal lattice), :func:`structure_factor_from_rdf`.
+Dynamics: :func:`msd` (FFT method), :func:`msd_direct` (the O(T^2) sum it must equal),
+:func:`self_intermediate_scattering`, :func:`velocity_autocorrelation`.
+Order: :func:`psi6` (2D bond order, global and per particle), :func:`clusters`.
+
+Example::
+
+    import pedesis.analyze as pa
+    traj = pa.read_frames("runs/demo")
+    r, g = pa.rdf(traj.positions[-1], traj.box, r_max=5.0, bins=200)
+"""
+from .box import Box
+from .dynamics import msd, msd_direct, self_intermediate_scattering, velocity_autocorrelation
+from .frames import Trajectory, read_frames
+from .order import clusters, psi6
+from .structure import rdf, structure_factor, structure_factor_from_rdf
+
+__all__ = [
+    "Box", "Trajectory", "read_frames", "rdf", "structure_factor", "structure_factor_from_rdf",
+    "msd", "msd_direct", "self_intermediate_scattering", "velocity_autocorrelation", "psi6",
+    "clusters",
+]
