@@ -196,3 +196,108 @@ def test_read_frames_of_a_run_unwraps_to_the_logged_msd(tmp_path, run_cli):
     logged = np.array([float(r.split(",")[col]) for r in rows[1:]])
     assert np.abs(traj.images).max() > 0  # the swimmers crossed the edges
     assert measured == pytest.approx(logged, rel=1e-5, abs=1e-5)
+
+
+def test_polar_order_of_aligned_and_random_directors():
+    aligned = np.tile([[0.6, 0.8]], (500, 1))
+    assert pa.polar_order(aligned) == pytest.approx(1.0)
+    t = np.random.default_rng(5).uniform(0, 2 * np.pi, 10000)
+    assert pa.polar_order(np.stack([np.cos(t), np.sin(t)], axis=1)) < 5 / np.sqrt(10000)
+
+
+def test_polar_correlation_of_a_plane_wave_is_bessel_j0():
+    # n = (cos kx, sin kx) on a uniform gas: n_i . n_j = cos(k dx), and over the pairs at
+    # distance r (isotropic) < cos(k r cos(theta)) > = J0(k r); ~4000 pairs a bin at r > 1
+    # bound the noise by 0.05
+    from scipy.special import j0
+    rng = np.random.default_rng(6)
+    L, n = 40.0, 6000
+    x = rng.uniform(0, L, (n, 2))
+    k = 2 * np.pi / L * 6  # a whole number of waves: periodic
+    d = np.stack([np.cos(k * x[:, 0]), np.sin(k * x[:, 0])], axis=1)
+    r, c, count = pa.polar_correlation(x, d, pa.Box((L, L)), r_max=6.0, bins=30)
+    far = r > 1.0
+    assert np.all(count[far] > 1000)
+    assert c[far] == pytest.approx(j0(k * r[far]), abs=0.05)
+
+
+def test_local_area_fraction_of_a_lattice_and_a_separated_system():
+    # disks of radius 0.5 on a unit square lattice: every 2 x 2 cell holds 4 centres, an
+    # area fraction of pi/4 exactly
+    n = 20
+    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    lattice = np.stack([i.ravel(), j.ravel()], axis=1) + 0.25
+    phi = pa.local_area_fraction(lattice, 0.5, pa.Box((n, n)), cell=2.0)
+    assert phi == pytest.approx(np.full(100, np.pi / 4))
+    # half the box that lattice, the other half a dilute gas: two peaks, near pi/4 and
+    # near the gas's area fraction (40 disks in 200: 0.157)
+    gas = np.random.default_rng(7).uniform([10, 0], [20, 20], (40, 2))
+    mixed = np.concatenate([lattice[lattice[:, 0] < 10], gas])
+    peaks, _, _ = pa.histogram_peaks(pa.local_area_fraction(mixed, 0.5, pa.Box((n, n)), cell=2.0),
+                                     bins=20, min_share=0.1)
+    assert len(peaks) >= 2
+    assert min(abs(peaks - np.pi / 4)) < 0.05 and min(abs(peaks - 0.157)) < 0.12
+
+
+def test_swim_pressure_of_free_active_brownian_particles():
+    # 2D free ABPs (U0 = 1, zeta = 1, D_r = 1, no translational noise), Euler steps of
+    # 0.01: Pi -> n zeta U0^2 / (2 D_r) = n / 2 after a few tau_R = 1; the mean over
+    # t in [5, 20] of 2000 particles is within 5 % (its noise ~2 %)
+    rng = np.random.default_rng(8)
+    N, T, dt = 2000, 2000, 0.01
+    theta = np.cumsum(rng.normal(scale=np.sqrt(2 * dt), size=(T, N)), axis=0)
+    n = np.stack([np.cos(theta), np.sin(theta)], axis=2)
+    x = np.concatenate([np.zeros((1, N, 2)), np.cumsum(n[:-1] * dt, axis=0)])
+    volume = 100.0 ** 2
+    pi = pa.swim_pressure(x, n, alpha=1.0, volume=volume)
+    late = pi[500:].mean()
+    assert late == pytest.approx(N / volume / 2, rel=0.05)
+
+
+def test_steinhardt_q4_q6_of_fcc_and_simple_cubic():
+    x, box = fcc(5)
+    assert pa.steinhardt(x, box, 4) == pytest.approx(np.full(len(x), 0.19094), abs=1e-5)
+    assert pa.steinhardt(x, box, 6) == pytest.approx(np.full(len(x), 0.57452), abs=1e-5)
+    c = np.stack(np.meshgrid(*[np.arange(6.0)] * 3, indexing="ij"), axis=-1).reshape(-1, 3)
+    sc = pa.Box((6.0, 6.0, 6.0))
+    assert pa.steinhardt(c, sc, 4, neighbours=6) == pytest.approx(np.full(len(c), 0.76376), abs=1e-5)
+    assert pa.steinhardt(c, sc, 6, neighbours=6) == pytest.approx(np.full(len(c), 0.35355), abs=1e-5)
+
+
+@pytest.mark.parametrize("dimension", [2, 3])
+def test_contact_value_of_hard_particles_gives_the_measured_pressure(tmp_path, run_cli, dimension):
+    # the virial theorem for hard disks (spheres): Z = 1 + 2 eta g(sigma+) (1 + 4 eta
+    # g(sigma+)); g(sigma+) extrapolated from the first bins of g(r) over the frames of an
+    # event-driven run at eta = 0.3 must give the Z the engine measures from its
+    # collisions, within 3 combined standard errors (8 blocks of frames, 8 of log rows)
+    n = 400 if dimension == 2 else 500
+    eta = 0.3
+    volume_one = np.pi / 4 if dimension == 2 else np.pi / 6
+    L = (n * volume_one / eta) ** (1 / dimension)
+    cfg = tmp_path / "hard.toml"
+    cfg.write_text(
+        f"dimension = {dimension}\nseed = 11\n[box]\nlength = {L!r}\n"
+        f'[[species]]\nname = "A"\ncount = {n}\nradius = 0.5\n'
+        '[initial]\nvelocities = "normal"\nsigma = 1.0\n[run]\ntime = 400.0\n'
+        '[output]\nlog_interval = 1.0\nsnapshot_interval = 0.5\nformats = ["gsd"]\nprogress = false\n')
+    run_cli("run", cfg, "--out", tmp_path / "run")
+    traj = pa.read_frames(tmp_path / "run")
+    frames = traj.positions[40:]  # after t = 20
+    r, _ = pa.rdf(frames[0], traj.box, r_max=1.5, bins=150)
+    near = (r > 1.0) & (r < 1.08)
+
+    def contact(block):
+        g = np.mean([pa.rdf(x, traj.box, r_max=1.5, bins=150)[1] for x in block], axis=0)
+        return np.polyval(np.polyfit(r[near], g[near], 2), 1.0)
+
+    values = [contact(b) for b in np.array_split(frames, 8)]
+    g_contact, g_error = np.mean(values), np.std(values, ddof=1) / np.sqrt(8)
+    factor = 2 * eta if dimension == 2 else 4 * eta
+    z_from_g = 1 + factor * g_contact
+    rows = (tmp_path / "run" / "log.csv").read_text().splitlines()
+    col = rows[0].split(",").index("compressibility")
+    z_rows = np.array([float(row.split(",")[col]) for row in rows[21:]])  # t > 20
+    z_blocks = [b.mean() for b in np.array_split(z_rows, 8)]
+    z, z_error = np.mean(z_blocks), np.std(z_blocks, ddof=1) / np.sqrt(8)
+    bound = 3 * np.hypot(factor * g_error, z_error)
+    assert abs(z_from_g - z) < bound, (z_from_g, z, bound)

@@ -10,7 +10,10 @@ Structure: :func:`rdf` (g(r), per species pair), :func:`structure_factor` (direc
 the box's reciprocal lattice), :func:`structure_factor_from_rdf`.
 Dynamics: :func:`msd` (FFT method), :func:`msd_direct` (the O(T^2) sum it must equal),
 :func:`self_intermediate_scattering`, :func:`velocity_autocorrelation`.
-Order: :func:`psi6` (2D bond order, global and per particle), :func:`clusters`.
+Order: :func:`psi6` (2D bond order, global and per particle), :func:`steinhardt` (q4,
+q6 in 3D), :func:`clusters`.
+Active matter: :func:`polar_order`, :func:`polar_correlation`, :func:`local_area_fraction`
+with :func:`histogram_peaks` (MIPS bimodality), :func:`swim_pressure`.
 
 Example::
 
@@ -18,14 +21,17 @@ Example::
     traj = pa.read_frames("runs/demo")
     r, g = pa.rdf(traj.positions[-1], traj.box, r_max=5.0, bins=200)
 """
+from .active import histogram_peaks, local_area_fraction, polar_correlation, polar_order, swim_pressure
 from .box import Box
 from .dynamics import msd, msd_direct, self_intermediate_scattering, velocity_autocorrelation
 from .frames import Trajectory, read_frames
 from .order import clusters, psi6
+from .steinhardt import steinhardt
 from .structure import rdf, structure_factor, structure_factor_from_rdf
 
 __all__ = [
     "Box", "Trajectory", "read_frames", "rdf", "structure_factor", "structure_factor_from_rdf",
     "msd", "msd_direct", "self_intermediate_scattering", "velocity_autocorrelation", "psi6",
-    "clusters",
+    "clusters", "steinhardt", "polar_order", "polar_correlation", "local_area_fraction",
+    "histogram_peaks", "swim_pressure",
 ]
