@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config
   googletest libgtest-dev
   nlohmann-json3-dev libtomlplusplus-dev libcli11-dev libfmt-dev librandom123-dev
-  libomp-dev python3-numpy python3-gsd
+  libomp-dev python3-numpy python3-gsd python3-scipy
   libcairo2-dev ffmpeg python3-matplotlib
   python3-dev pybind11-dev python3-pytest
   python3-ase python3-vtk9 zlib1g-dev
