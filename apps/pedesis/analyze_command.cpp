@@ -1,8 +1,8 @@
 // `pedesis analyze speed|thermo|msd|order RUN_DIR [--out FILE]` (docs/analyze.md).
-// The plots are drawn by matplotlib scripts (scripts/analyze/KIND.py) run with Debian's
-// Python; this side checks the run directory first, so the common mistakes get the
-// project's one-line message and exit code 2 without starting Python, and then passes
-// the script's exit status on.
+// The plots are drawn by the Python package's pedesis.analyze (python3 -m pedesis.analyze
+// KIND RUN_DIR, matplotlib) run with Debian's Python; this side checks the run directory
+// first, so the common mistakes get the project's one-line message and exit code 2
+// without starting Python, and then passes the module's exit status on.
 #include "analyze_command.hpp"
 
 #include "pedesis/core/error.hpp"
@@ -62,7 +62,7 @@ struct AnalyzeArgs {
 };
 
 // An environment variable overrides the path built in at compile time, so an installed
-// binary or a moved source tree still finds its interpreter and scripts.
+// binary or a moved source tree still finds its interpreter and package.
 std::string configured_path(const char* variable, const char* built_in) {
     const char* v = std::getenv(variable);
     return v && *v ? std::string(v) : std::string(built_in);
@@ -121,31 +121,51 @@ std::string python_interpreter() {
     return python;
 }
 
-fs::path script_for(const Kind& kind) {
-    const fs::path dir = configured_path("PEDESIS_SCRIPTS", PEDESIS_ANALYZE_SCRIPTS);
-    const fs::path script = dir / (std::string(kind.name) + ".py");
+// The folder holding the pedesis package (build/python; the source tree's python/ in a
+// build without the compiled module, whose pure-Python plots work all the same).
+std::string package_path() {
+    const std::string dir = configured_path("PEDESIS_PYTHONPATH", PEDESIS_ANALYZE_PYTHONPATH);
     std::error_code ec;
-    if (!fs::is_regular_file(script, ec))
+    if (!fs::is_regular_file(fs::path(dir) / "pedesis" / "analyze" / "__main__.py", ec))
         throw InputError(fmt::format(
-            "analyze: plotting script {} not found; set PEDESIS_SCRIPTS to the scripts/analyze "
-            "folder of the pedesis sources",
-            script.string()));
-    return script;
+            "analyze: the pedesis Python package is not in {} (no pedesis/analyze there); set "
+            "PEDESIS_PYTHONPATH to the build's python folder",
+            dir));
+    return dir;
+}
+
+// This process's environment with `dir` first on PYTHONPATH (a user's own entries stay).
+std::vector<std::string> environment_with_package(const std::string& dir) {
+    std::vector<std::string> env;
+    std::string path = "PYTHONPATH=" + dir;
+    for (char** e = environ; *e; ++e) {
+        const std::string entry(*e);
+        if (entry.rfind("PYTHONPATH=", 0) == 0) {
+            if (entry.size() > 11) path += ":" + entry.substr(11);
+        } else {
+            env.push_back(entry);
+        }
+    }
+    env.push_back(path);
+    return env;
 }
 
 // Runs argv[0] with the arguments, sharing stdout and stderr, and returns its wait status.
 // A signal to pedesis (SIGINT, SIGTERM, SIGHUP) is passed on to the script, which ends
-// without leaving its figure half written (scripts/analyze/figure.py writes, then
+// without leaving its figure half written (pedesis/analyze/plots/figure.py writes, then
 // renames); once it has ended, pedesis ends by the same signal: no orphan goes on.
-int run_process(const std::vector<std::string>& args, const InterruptGuard& guard) {
-    std::vector<char*> argv;
+int run_process(const std::vector<std::string>& args, const std::vector<std::string>& env,
+                const InterruptGuard& guard) {
+    std::vector<char*> argv, envp;
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
+    for (const std::string& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+    envp.push_back(nullptr);
     // what this process printed must come out before the child's lines
     std::cout.flush();
     std::fflush(stdout);
     pid_t pid = 0;
-    const int err = ::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
+    const int err = ::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), envp.data());
     if (err != 0)
         throw InputError(fmt::format("analyze: cannot start {}: {}", args[0], std::strerror(err)));
     int status = 0;
@@ -167,26 +187,31 @@ int run_process(const std::vector<std::string>& args, const InterruptGuard& guar
 
 void analyze(const Kind& kind, const AnalyzeArgs& a) {
     check_run_dir(a.run_dir, kind);
+    const std::string package = package_path();
     std::vector<std::string> args{python_interpreter(),
                                   "-B", // no __pycache__ in the source tree
-                                  script_for(kind).string(), a.run_dir};
+                                  "-m",
+                                  "pedesis.analyze",
+                                  kind.name,
+                                  a.run_dir};
     if (!a.out.empty()) {
         args.push_back("--out");
         args.push_back(a.out);
     }
     InterruptGuard guard;
-    const int status = run_process(args, guard);
+    const int status = run_process(args, environment_with_package(package), guard);
     if (guard.signal() != 0) guard.reraise();
     if (WIFEXITED(status)) {
         const int code = WEXITSTATUS(status);
         if (code == 0) return;
         // the script has printed its one-line message; a silent ParseError carries the code
         if (code == exit_input_error) throw CLI::RuntimeError(exit_input_error);
-        throw std::runtime_error(
-            fmt::format("analyze {}: {} failed with exit status {}", kind.name, args[2], code));
+        throw std::runtime_error(fmt::format(
+            "analyze {}: python3 -m pedesis.analyze failed with exit status {}", kind.name, code));
     }
-    throw std::runtime_error(fmt::format("analyze {}: {} was killed by signal {}", kind.name,
-                                         args[2], WIFSIGNALED(status) ? WTERMSIG(status) : -1));
+    throw std::runtime_error(fmt::format("analyze {}: python3 -m pedesis.analyze was killed by "
+                                         "signal {}",
+                                         kind.name, WIFSIGNALED(status) ? WTERMSIG(status) : -1));
 }
 
 } // namespace

@@ -1,4 +1,4 @@
-"""The theory curves of the analysis plots (scripts/analyze, `pedesis analyze`) against
+"""The theory curves of the analysis plots (pedesis.analyze.plots, `pedesis analyze`) against
 independent results: the equilibrium speed distributions of speed.py (normalisation,
 moments, mode and median by quadrature, the CDF as the integral of the PDF), its
 Kolmogorov-Smirnov distance and critical value, the free-ABP MSD of msd.py (the
@@ -6,30 +6,22 @@ integral of the velocity autocorrelation, the ballistic and diffusive limits) an
 parameters msd.py reads from a config, and the equation-of-state line of thermo.py
 (Henderson in 2D, Carnahan-Starling in 3D, from formulas written here).
 
-The scripts are imported directly (scripts/analyze on sys.path; they only define
-functions at import and run main() under `if __name__ == "__main__"`). Quadrature is
+The plot modules are imported directly (they only define functions at import; `python3
+-m pedesis.analyze KIND` runs their main()). Quadrature is
 Gauss-Legendre from numpy, so the test needs only the declared dependencies (numpy,
 matplotlib is not imported); tolerances are near rounding, since all of these are
 exact formulas.
 
-(scripts/analyze has no Haff's-law curve: thermo.py plots the log's temperature
+(The plots have no Haff's-law curve: thermo.py plots the log's temperature
 without a cooling law, so there is nothing of that kind to test here.)
 """
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-REPO = Path(__file__).resolve().parents[2]
-sys.dont_write_bytecode = True  # no __pycache__ in the source tree
-sys.path.insert(0, str(REPO / "scripts" / "analyze"))
-
-import msd  # noqa: E402
-import speed  # noqa: E402
-import thermo  # noqa: E402
-from run_dir import Run  # noqa: E402
+from pedesis.analyze.plots import msd, speed, thermo
+from pedesis.analyze.plots.run_dir import Run
 
 # --- quadrature ----------------------------------------------------------------------
 

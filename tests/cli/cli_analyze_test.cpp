@@ -279,10 +279,10 @@ TEST_F(CliAnalyze, MissingPythonIsNamed) {
     expect_one_error_line(run_pedesis("analyze thermo ev", dir), "no_python3");
 }
 
-TEST_F(CliAnalyze, MissingScriptsAreNamed) {
+TEST_F(CliAnalyze, AMissingPackageIsNamed) {
     simulate("ev", event_config(2));
-    const ScopedEnv env("PEDESIS_SCRIPTS", (dir / "no_scripts").string());
-    expect_one_error_line(run_pedesis("analyze thermo ev", dir), "no_scripts/thermo.py");
+    const ScopedEnv env("PEDESIS_PYTHONPATH", (dir / "no_package").string());
+    expect_one_error_line(run_pedesis("analyze thermo ev", dir), "no_package");
 }
 
 // A module named matplotlib that cannot be imported stands in for a machine without
@@ -296,12 +296,15 @@ TEST_F(CliAnalyze, MissingMatplotlibIsNamed) {
     EXPECT_FALSE(fs::exists(dir / "ev" / "thermo.png"));
 }
 
-// A script that fails for another reason than bad input is a bug, not exit 2.
+// A plot that fails for another reason than bad input is a bug, not exit 2 (a package
+// whose pedesis.analyze raises stands in for one).
 TEST_F(CliAnalyze, AScriptCrashIsAnInternalError) {
     simulate("ev", event_config(2));
-    fs::create_directories(dir / "scripts");
-    write("scripts/thermo.py", "raise RuntimeError('boom')\n");
-    const ScopedEnv env("PEDESIS_SCRIPTS", (dir / "scripts").string());
+    fs::create_directories(dir / "package" / "pedesis" / "analyze");
+    write("package/pedesis/__init__.py", "");
+    write("package/pedesis/analyze/__init__.py", "");
+    write("package/pedesis/analyze/__main__.py", "raise RuntimeError('boom')\n");
+    const ScopedEnv env("PEDESIS_PYTHONPATH", (dir / "package").string());
     const CliResult r = run_pedesis("analyze thermo ev", dir);
     EXPECT_EQ(r.exit_code, 1) << r.output;
     EXPECT_NE(r.output.find("internal error: analyze thermo"), std::string::npos) << r.output;

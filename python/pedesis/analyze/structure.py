@@ -2,7 +2,6 @@
 import numpy as np
 from scipy.special import j0
 
-from .. import _pedesis
 from .box import Box
 
 
@@ -64,7 +63,10 @@ def rdf(positions, box, r_max, bins=200, types=None, pair=None):
         types = np.asarray(types)
         a, b = x[types == pair[0]], x[types == pair[1]]
         same = pair[0] == pair[1]
-    # the pairs by distance, through pedesis's cell list (each pair once)
+    # the pairs by distance, through pedesis's cell list (each pair once); imported here,
+    # so that the rest of pedesis.analyze works where the compiled module is not built
+    from .. import _pedesis
+
     counts = _pedesis.pair_histogram(a, b, same, list(box.lengths), list(box.periodic), r_max, bins)
     pairs = 0.5 * len(a) * (len(a) - 1) if same else float(len(a) * len(b))
     centres = 0.5 * (edges[1:] + edges[:-1])

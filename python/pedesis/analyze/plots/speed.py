@@ -13,8 +13,8 @@ import sys
 
 import numpy as np
 
-import figure
-from run_dir import InputError, Run, main_guard
+from . import figure
+from .run_dir import InputError, Run, main_guard
 
 
 def speed_cdf(dim, v, T, m):
@@ -160,7 +160,3 @@ def _time_averaged_histogram(run, ax, colours):
         dens = [b[2] for b in bins] + [bins[-1][2]]
         ax.step(lo, dens, where="post", color=colours.get(name, "k"), lw=1.0, ls=":",
                 label=f"{name}: all states t >= {start:g} ({path.name})")
-
-
-if __name__ == "__main__":
-    sys.exit(main_guard(main))

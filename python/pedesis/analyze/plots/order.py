@@ -7,8 +7,8 @@ Usage: order.py RUN_DIR [--out FILE]   (default RUN_DIR/order.png)
 import math
 import sys
 
-import figure
-from run_dir import InputError, Run, main_guard, require_columns
+from . import figure
+from .run_dir import InputError, Run, main_guard, require_columns
 
 
 def main():
@@ -46,7 +46,3 @@ def main():
     fig.tight_layout()
     figure.save(fig, out)
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main_guard(main))

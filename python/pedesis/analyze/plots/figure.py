@@ -6,7 +6,7 @@ import os
 import textwrap
 from pathlib import Path
 
-from run_dir import InputError
+from .run_dir import InputError
 
 DPI = 150
 FORMATS = (".png", ".pdf", ".svg")

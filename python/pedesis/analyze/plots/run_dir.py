@@ -13,12 +13,7 @@ import sys
 import tomllib
 from pathlib import Path
 
-try:
-    import numpy as np
-except ImportError as e:  # pragma: no cover - depends on the machine
-    sys.stderr.write(f"pedesis: error: the plots need Debian's python3-numpy and "
-                     f"python3-matplotlib ({e}); apt-get install python3-matplotlib\n")
-    sys.exit(2)
+import numpy as np  # (python -m pedesis.analyze names the package if it is missing)
 
 SOFT_DYNAMICS = ("brownian", "langevin", "nve")
 

@@ -13,8 +13,8 @@ import sys
 
 import numpy as np
 
-import figure
-from run_dir import InputError, Run, main_guard, require_columns
+from . import figure
+from .run_dir import InputError, Run, main_guard, require_columns
 
 
 def free_abp_msd(t, dim, Dt, v0, Dr):
@@ -163,7 +163,3 @@ def main():
     fig.tight_layout()
     figure.save(fig, out)
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main_guard(main))

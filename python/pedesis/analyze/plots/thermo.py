@@ -7,8 +7,8 @@ Usage: thermo.py RUN_DIR [--out FILE]   (default RUN_DIR/thermo.png)
 """
 import sys
 
-import figure
-from run_dir import InputError, Run, main_guard
+from . import figure
+from .run_dir import InputError, Run, main_guard
 
 
 def panels(log, dim):
@@ -112,7 +112,3 @@ def _equation_of_state(run, log, x, ax):
     name = "Henderson" if run.dimension == 2 else "Carnahan-Starling"
     ax.plot(x, Z * log["pressure_ideal"], color="gray", ls="--", lw=1.2,
             label=f"{name} equation of state, Z = {Z:.4g}")
-
-
-if __name__ == "__main__":
-    sys.exit(main_guard(main))
