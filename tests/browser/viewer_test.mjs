@@ -283,6 +283,18 @@ async function checkExport(browser, dir) {
   await context.close();
 }
 
+// Moves the page's steering slider of `parameter` to `value`, as a user would, and waits
+// until the page says the server queued the change.
+async function moveSlider(page, parameter, value) {
+  await page.evaluate(([name, v]) => {
+    const slider = document.querySelector(`#steer-${name}`);
+    slider.value = v;
+    slider.dispatchEvent(new Event('change'));
+  }, [parameter, value]);
+  await page.waitForFunction(() => /from the next step/.test(document.querySelector('#steer-status').textContent),
+    null, { timeout: 10000 });
+}
+
 // `pedesis run CONFIG --view` in the background: resolves once it prints its address.
 async function startLiveRun(config, dir) {
   const run = spawn(binary, ['run', config, '--out', dir, '--view', '--view-port', '0'],
@@ -323,13 +335,7 @@ async function checkLive(browser) {
     check(first >= 1 && later > first, `live (run --view): the page's frame count grows from ${first} to ${later}`);
 
     // the page's control, as a user would move it
-    await page.evaluate(() => {
-      const slider = document.querySelector('#steer-temperature');
-      slider.value = '0.5';
-      slider.dispatchEvent(new Event('change'));
-    });
-    await page.waitForFunction(() => /from the next step/.test(document.querySelector('#steer-status').textContent),
-      null, { timeout: 10000 });
+    await moveSlider(page, 'temperature', '0.5');
     check(true, 'live: the temperature slider sent T = 0.5 and the server queued it');
     const post = (body) => fetch(base + 'api/set', { method: 'POST', body })
       .then(async (r) => [r.status, (await r.json()).error]);
@@ -402,13 +408,7 @@ async function checkLiveEvent(browser) {
     await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
     const [status, error] = await post({ token, parameter: 'restitution', value: 1.5 });
     check(status === 400 && /\[0, 1\]/.test(error), `live event: restitution 1.5 -> ${status} "${error}"`);
-    await page.evaluate(() => {
-      const slider = document.querySelector('#steer-restitution');
-      slider.value = '0.9';
-      slider.dispatchEvent(new Event('change'));
-    });
-    await page.waitForFunction(() => /from the next step/.test(document.querySelector('#steer-status').textContent),
-      null, { timeout: 10000 });
+    await moveSlider(page, 'restitution', '0.9');
     await new Promise((done) => setTimeout(done, 2000));
     await page.close();
   } finally {
