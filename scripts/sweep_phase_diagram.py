@@ -5,14 +5,14 @@ usage: scripts/sweep_phase_diagram.py SWEEP_DIR --x KEY --y KEY [--plot FILE.png
 
 SWEEP_DIR is the directory of `pedesis sweep` (it holds sweep.csv and one run directory
 per point); KEY are two of its varied keys (the column names of sweep.csv). For each
-finished point's trajectory.gsd it computes, with the functions of
-scripts/local_density_histogram.py:
+finished point's trajectory.gsd it computes, with pedesis.analyze (as `pedesis analyze
+clusters` does for one run):
 
   * the peaks of the histogram of the local area fraction (cells of --cell diameters),
     pooled over the frames of the second half of the run: two peaks, a dilute gas and
     a dense phase, are motility-induced phase separation;
-  * the largest-cluster fraction of dense particles (>= 5 contacts), averaged over
-    those frames.
+  * the largest-cluster fraction of dense particles (>= 5 neighbours within 1.1
+    diameters), averaged over those frames.
 
 It prints one line per point and, with --plot, draws the (x, y) grid coloured by the
 largest-cluster fraction, each point marked by its mean area fraction and its peaks
@@ -21,7 +21,8 @@ largest-cluster fraction, each point marked by its mean area fraction and its pe
   scripts/sweep_phase_diagram.py runs/mips_phase_diagram --x force.self_propulsion.alpha \\
       --y box.length --plot runs/mips_phase_diagram/phase_diagram.png
 
-Needs Debian's python3-gsd, python3-numpy and (for --plot) python3-matplotlib.
+Needs Debian's python3-gsd, python3-numpy, python3-scipy and (for --plot)
+python3-matplotlib; the pedesis package is taken from the source tree's python/.
 """
 
 import argparse
@@ -31,8 +32,8 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import local_density_histogram as ldh  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+import pedesis.analyze as pa  # noqa: E402
 
 
 def read_points(sweep_dir, x, y):
@@ -49,20 +50,19 @@ def read_points(sweep_dir, x, y):
 def analyse_point(sweep_dir, row, cell):
     """The frames of the second half of the run, pooled: one frame of a small system
     shows spurious peaks; the cells of several frames make a smooth histogram."""
-    import gsd.hoomd
-    traj = os.path.join(sweep_dir, row["name"], "trajectory.gsd")
-    with gsd.hoomd.open(traj, "rb") as t:
-        frames = [t[k] for k in range(len(t) // 2, len(t))]
-    results = [ldh.analyse(f, cell, contact=1.1, min_neighbours=5, bin_width=None)
-               for f in frames]
-    pooled = np.concatenate([r["phi_cells"] for r in results])
-    # the bins of analyse(): two particles of mean size per bin, edges between counts
-    r = results[-1]
-    unit = 0.25 * np.pi * np.mean(r["diam"] ** 2) / (r["side"][0] * r["side"][1])
-    edges = np.arange(-0.5 * unit, pooled.max() + 2 * unit + 1e-12, 2 * unit)
-    _, _, peaks = ldh.histogram_peaks(pooled, edges)
-    return dict(phi_mean=r["phi_mean"], peaks=peaks, frames=len(frames),
-                largest=float(np.mean([x["largest"] for x in results])))
+    run = os.path.join(sweep_dir, row["name"])
+    traj = pa.read_frames(run)
+    diameter = float(np.mean(traj.diameters))
+    frames = traj.positions[len(traj.positions) // 2:]
+    cells = [pa.local_area_fraction(x, 0.5 * traj.diameters, traj.box, cell * diameter)
+             for x in frames]
+    grid = pa.fraction_bins(0.5 * diameter, traj.box, cell * diameter)
+    peaks = pa.histogram_peaks(np.concatenate(cells), *grid, min_share=0.05, smooth=5)[0]
+    largest = [pa.clusters(x, traj.box, 1.1 * diameter, min_neighbours=5)[1] for x in frames]
+    area = np.pi / 4 * np.sum(traj.diameters ** 2) / traj.box.volume
+    return dict(phi_mean=float(area), peaks=sorted(peaks), frames=len(frames),
+                largest=float(np.mean([s[0] / len(traj.types) if len(s) else 0.0
+                                       for s in largest])))
 
 
 def plot(points, results, x, y, path):

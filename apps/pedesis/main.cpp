@@ -1,5 +1,5 @@
-// pedesis command line: run, sweep, init, analyze, render, bench. Input errors exit with 2, stopped
-// runs with 3.
+// pedesis command line: run, sweep, init, analyze, render, view, validate, bench. Input
+// errors exit with 2, stopped runs with 3.
 #include "analyze_command.hpp"
 #include "bench_abp.hpp"
 #include "bench_event.hpp"
@@ -9,6 +9,7 @@
 #include "render_command.hpp"
 #include "run_command.hpp"
 #include "sweep_command.hpp"
+#include "validate_command.hpp"
 #include "view_command.hpp"
 
 #include "pedesis/core/error.hpp"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
     pedesis::cli::add_analyze_command(app);
     pedesis::cli::add_render_command(app);
     pedesis::cli::add_view_command(app);
+    pedesis::cli::add_validate_command(app);
     auto* bench =
         app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");
     bench->require_subcommand(1);

@@ -1,6 +1,9 @@
 """pedesis.analyze against exact cases: each quantity on a configuration whose answer is
 known without the code (a lattice, an ideal gas, a random walk, an analytic g(r)), at a
 tolerance that the configuration's size makes fair."""
+import re
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -157,6 +160,29 @@ def test_psi6_is_one_on_a_triangular_lattice_and_small_for_a_gas():
     assert pa.psi6(gas, pa.Box((40, 40)))[0] < 5 / np.sqrt(4000)
 
 
+@pytest.mark.parametrize("walls", [False, True])
+def test_voronoi_psi6_is_one_on_a_triangular_lattice_and_zero_on_a_square_one(walls):
+    # every Voronoi cell of a triangular lattice is a regular hexagon (6 equal edges); a
+    # square lattice's cells are squares, whose 4 bonds cancel in exp(6 i theta), and the
+    # diagonal neighbours share a vertex only (weight 0). With walls the outer cells are
+    # open: their finite edges still point along lattice bonds
+    x, box = triangular(30, 36)
+    if walls:
+        box = pa.Box(box.lengths, (False, False))
+    total, local = pa.psi6(x, box, weighting="voronoi")
+    inner = np.ones(len(x), dtype=bool)
+    if walls:  # the outermost rows and columns have open cells
+        inner = (x[:, 0] > 1.5) & (x[:, 0] < 28) & (x[:, 1] > 1.5) & (x[:, 1] < 29)
+    assert np.abs(local[inner]) == pytest.approx(np.ones(inner.sum()), abs=1e-9)
+    if not walls:
+        assert total == pytest.approx(1.0, abs=1e-9)
+    j, i = np.meshgrid(np.arange(30), np.arange(30), indexing="ij")
+    square = np.stack([i.ravel(), j.ravel()], axis=1) + 0.5
+    assert np.abs(pa.psi6(square, pa.Box((30.0, 30.0)), weighting="voronoi")[1]).max() < 1e-9
+    gas = np.random.default_rng(4).uniform(0, 40, (4000, 2))
+    assert pa.psi6(gas, pa.Box((40, 40)), weighting="voronoi")[0] < 5 / np.sqrt(4000)
+
+
 def test_clusters_of_two_patches_and_loose_particles():
     # a 100-particle patch at 21.5..29.6 (spacing 0.9 < cutoff 1), a 64-particle one at
     # 2..6.5, two loose particles, and one at x = 0.3 that touches the big patch only across
@@ -171,6 +197,22 @@ def test_clusters_of_two_patches_and_loose_particles():
     # with walls the edge no longer joins it
     _, walled = pa.clusters(x, pa.Box((30.0, 30.0), (False, False)), cutoff=1.0)
     assert list(walled) == [100, 64, 1, 1, 1]
+
+
+def test_dense_clusters_keep_only_particles_with_enough_neighbours():
+    # a triangular patch (interior particles have 6 neighbours at distance 1, its rim 2-4)
+    # in a dilute gas: with min_neighbours = 5 one cluster of exactly the particles with
+    # 5 or more neighbours, counted here by brute force; the gas and the rim get -1
+    patch, _ = triangular(12, 12)
+    rng = np.random.default_rng(2)
+    gas = rng.uniform(20, 60, (40, 2))
+    x = np.concatenate([patch + 2.0, gas])
+    d = np.linalg.norm(x[:, None] - x[None], axis=2)
+    degree = ((d < 1.1) & (d > 0)).sum(axis=1)
+    labels, sizes = pa.clusters(x, pa.Box((80.0, 80.0)), cutoff=1.1, min_neighbours=5)
+    assert sizes[0] == (degree >= 5).sum() > 80
+    assert np.array_equal(labels == 0, degree >= 5)
+    assert np.all(labels[degree < 5] == -1) and len(sizes) == 1
 
 
 def test_read_frames_of_a_run_unwraps_to_the_logged_msd(tmp_path, run_cli):
@@ -301,3 +343,47 @@ def test_contact_value_of_hard_particles_gives_the_measured_pressure(tmp_path, r
     z, z_error = np.mean(z_blocks), np.std(z_blocks, ddof=1) / np.sqrt(8)
     bound = 3 * np.hypot(factor * g_error, z_error)
     assert abs(z_from_g - z) < bound, (z_from_g, z, bound)
+
+
+def _lattice_run(tmp_path, run_cli):
+    """A 20 x 20 triangular lattice of spacing 1 (disks of diameter 0.9) that does not
+    move: brownian dynamics at T = 0 with no force, two frames."""
+    cfg = tmp_path / "lattice.toml"
+    cfg.write_text(
+        'dimension = 2\ndynamics = "brownian"\nseed = 1\n[box]\n'
+        f'lengths = [20.0, {20 * np.sqrt(3) / 2!r}]\n'
+        '[[species]]\nname = "A"\ncount = 400\nradius = 0.45\n[initial]\npositions = "hexagonal"\n'
+        '[[integrator]]\nname = "brownian"\nT = 0.0\ngamma = 1.0\n'
+        '[run]\ndt = 0.01\nsteps = 2\n[output]\nlog_every = 1\nsnapshot_every = 1\n'
+        'formats = ["gsd"]\nprogress = false\n')
+    run_cli("run", cfg, "--out", tmp_path / "run")
+    return tmp_path / "run"
+
+
+def test_analyze_figures_of_a_lattice_run(tmp_path, run_cli):
+    # the CLI's structure, bond_order and clusters figures of a perfect lattice: g(r)'s
+    # highest peak at the spacing 1 (within a bin of 0.04), |psi6| = 1, and every particle
+    # in one dense cluster (6 neighbours within 1.2 diameters = 1.08) with no phase split
+    run = _lattice_run(tmp_path, run_cli)
+    out = run_cli("analyze", "structure", run).stdout
+    peak = float(re.search(r"highest peak at r = ([0-9.]+)", out).group(1))
+    assert abs(peak - 1.0) < 0.04
+    assert (run / "structure.png").stat().st_size > 10000
+    out = run_cli("analyze", "bond_order", run).stdout
+    assert "|<psi6>| = 1.0000" in out
+    out = run_cli("analyze", "clusters", run, "--contact", "1.2", "--out", tmp_path / "c.png").stdout
+    last = [line for line in out.splitlines() if line.strip().startswith("0.02")][0].split()
+    assert float(last[3]) == 1.0
+    assert "one peak: homogeneous" in out
+    assert (tmp_path / "c.png").stat().st_size > 10000
+
+
+def test_analyze_figures_refuse_bad_input(tmp_path, run_cli, pedesis_bin):
+    run = _lattice_run(tmp_path, run_cli)
+    r = subprocess.run([pedesis_bin, "analyze", "clusters", str(run), "--cell", "-1"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "--cell" in r.stderr and r.stderr.count("\n") == 1
+    (run / "trajectory.gsd").unlink()
+    r = subprocess.run([pedesis_bin, "analyze", "structure", str(run)], capture_output=True,
+                       text=True)
+    assert r.returncode == 2 and "trajectory.gsd: missing" in r.stderr

@@ -13,7 +13,8 @@ Dynamics: :func:`msd` (FFT method), :func:`msd_direct` (the O(T^2) sum it must e
 Order: :func:`psi6` (2D bond order, global and per particle), :func:`steinhardt` (q4,
 q6 in 3D), :func:`clusters`.
 Active matter: :func:`polar_order`, :func:`polar_correlation`, :func:`local_area_fraction`
-with :func:`histogram_peaks` (MIPS bimodality), :func:`swim_pressure`.
+with :func:`histogram_peaks` and :func:`phase_fractions` (MIPS bimodality and the
+coexisting fractions), :func:`swim_pressure`.
 
 Example::
 
@@ -21,7 +22,8 @@ Example::
     traj = pa.read_frames("runs/demo")
     r, g = pa.rdf(traj.positions[-1], traj.box, r_max=5.0, bins=200)
 """
-from .active import histogram_peaks, local_area_fraction, polar_correlation, polar_order, swim_pressure
+from .active import (fraction_bins, histogram_peaks, local_area_fraction, phase_fractions, polar_correlation,
+                     polar_order, swim_pressure)
 from .box import Box
 from .dynamics import msd, msd_direct, self_intermediate_scattering, velocity_autocorrelation
 from .frames import Trajectory, read_frames
@@ -33,5 +35,5 @@ __all__ = [
     "Box", "Trajectory", "read_frames", "rdf", "structure_factor", "structure_factor_from_rdf",
     "msd", "msd_direct", "self_intermediate_scattering", "velocity_autocorrelation", "psi6",
     "clusters", "steinhardt", "polar_order", "polar_correlation", "local_area_fraction",
-    "histogram_peaks", "swim_pressure",
+    "fraction_bins", "histogram_peaks", "phase_fractions", "swim_pressure",
 ]

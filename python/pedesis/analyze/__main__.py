@@ -1,9 +1,9 @@
 """python3 -m pedesis.analyze KIND RUN_DIR [--out FILE]: the figures of `pedesis analyze`
-(speed, thermo, msd, order; docs/analyze.md). Bad input: one line on stderr, exit 2."""
+(speed, thermo, msd, order, structure, bond_order, clusters; docs/analyze.md). Bad input: one line on stderr, exit 2."""
 import importlib
 import sys
 
-KINDS = ("speed", "thermo", "msd", "order")
+KINDS = ("speed", "thermo", "msd", "order", "structure", "bond_order", "clusters")
 
 
 def main(argv):

@@ -48,19 +48,55 @@ def local_area_fraction(positions, radii, box, cell):
     return covered / (box.volume / np.prod(counts))
 
 
-def histogram_peaks(values, bins=40, value_range=(0.0, 1.0), min_share=0.02):
-    """The local maxima of the histogram of ``values`` (a smoothed count: 3 bins) that
-    hold at least ``min_share`` of the values, as bin centres, highest count first; two or
-    more mean a bimodal distribution. Returns (peaks, centres, density)."""
+def fraction_bins(radius, box, cell, top=1.2):
+    """Histogram bins for the local_area_fraction of equal particles of ``radius``:
+    (bins, value_range) with edges halfway between whole particle counts and each bin a
+    whole number (>= 2) of particles wide, at least 0.025. A cell's fraction is a whole
+    multiple of one particle's share of it, and bins that do not line up with those
+    multiples alias them into a comb of false peaks."""
+    box = box if isinstance(box, Box) else Box(box)
+    counts = [max(1, int(round(L / cell))) for L in box.lengths]
+    one = np.pi * radius ** 2 if box.dimension == 2 else 4.0 / 3.0 * np.pi * radius ** 3
+    share = one / (box.volume / np.prod(counts))
+    width = share * max(2, int(np.ceil(0.025 / share)))
+    bins = int(np.ceil((top + 0.5 * share) / width))
+    return bins, (-0.5 * share, -0.5 * share + bins * width)
+
+
+def histogram_peaks(values, bins=40, value_range=(0.0, 1.0), min_share=0.02, smooth=3):
+    """The local maxima of the histogram of ``values`` (a count smoothed over ``smooth``
+    bins) that hold at least ``min_share`` of the values, as bin centres, highest count
+    first; two or more mean a bimodal distribution. Returns (peaks, centres, density)."""
     density, edges = np.histogram(values, bins=bins, range=value_range, density=True)
     centres = 0.5 * (edges[1:] + edges[:-1])
-    smooth = np.convolve(density, np.ones(3) / 3.0, mode="same")
+    smoothed = np.convolve(density, np.ones(smooth) / smooth, mode="same")
     width = edges[1] - edges[0]
     peaks = [k for k in range(bins)
-             if smooth[k] > 0 and smooth[k] >= smooth[max(k - 1, 0)] and smooth[k] > smooth[min(k + 1, bins - 1)]
-             and smooth[k] * width * 3 >= min_share]
-    peaks.sort(key=lambda k: -smooth[k])
+             if smoothed[k] > 0 and smoothed[k] >= smoothed[max(k - 1, 0)]
+             and smoothed[k] > smoothed[min(k + 1, bins - 1)]
+             and smoothed[k] * width * smooth >= min_share]
+    peaks.sort(key=lambda k: -smoothed[k])
     return centres[peaks], centres, density
+
+
+def phase_fractions(fractions_per_frame, bins=40, value_range=(0.0, 1.2)):
+    """The coexisting phases of frames of local fractions (one array of cells per frame):
+    the pooled histogram's lowest and highest peaks (smoothed over 5 bins, each holding 5 %
+    of the cells) and the histogram's minimum between them split the cells into a dilute
+    and a dense phase; returns (gas, dense, threshold) with gas and dense (T,) the mean
+    local fraction of each frame's cells on either side, or None if the pooled histogram
+    has one peak. For equal particles take bins and value_range from fraction_bins."""
+    pooled = np.concatenate(fractions_per_frame)
+    peaks, centres, density = histogram_peaks(pooled, bins, value_range, min_share=0.05, smooth=5)
+    if len(peaks) < 2:
+        return None
+    lo, hi = np.searchsorted(centres, [peaks.min(), peaks.max()])
+    threshold = centres[lo + int(np.argmin(density[lo:hi + 1]))]
+    gas = np.array([f[f < threshold].mean() if (f < threshold).any() else np.nan
+                    for f in fractions_per_frame])
+    dense = np.array([f[f >= threshold].mean() if (f >= threshold).any() else np.nan
+                      for f in fractions_per_frame])
+    return gas, dense, float(threshold)
 
 
 def swim_pressure(unwrapped, directors, alpha, volume):

@@ -11,7 +11,11 @@ from .box import Box
 class Trajectory:
     """Frames as arrays: positions (T, N, d) wrapped as stored, images (T, N, d) integer
     box crossings (zeros where the file has none), velocities (T, N, d) or None, types
-    (N,) species indices, type_names, steps (T,), and the box (that of frame 0)."""
+    (N,) species indices, type_names, steps (T,), the box (that of frame 0), and directors
+    (T, N, d): unit vectors, the file's orientations applied to the x axis (None where
+    every orientation is the identity, as for hard particles), diameters (N,) of frame 0,
+    and times (T,): the simulated time of each frame (log/time; the step where a file has
+    none)."""
 
     positions: np.ndarray
     images: np.ndarray
@@ -20,6 +24,9 @@ class Trajectory:
     type_names: list
     steps: np.ndarray
     box: Box
+    directors: object = None
+    diameters: object = None
+    times: object = None
 
     def unwrapped(self):
         """Positions plus image * L: continuous paths, for the MSD."""
@@ -66,6 +73,24 @@ def read_frames(source, frames=None):
     vel = np.stack([s.particles.velocity[:, :d] for s in snaps]).astype(float)
     if not vel.any():
         vel = None
+    q = np.stack([s.particles.orientation for s in snaps]).astype(float)
+    directors = None if np.all(q == (1.0, 0.0, 0.0, 0.0)) else _x_axis_rotated(q)[..., :d]
     return Trajectory(positions=pos, images=img, velocities=vel,
                       types=np.asarray(first.particles.typeid), type_names=list(first.particles.types),
-                      steps=np.array([s.configuration.step for s in snaps]), box=box)
+                      steps=np.array([s.configuration.step for s in snaps]), box=box,
+                      directors=directors, diameters=np.asarray(first.particles.diameter, float),
+                      times=np.array([_time(s) for s in snaps]))
+
+
+def _time(snap):
+    """A frame's simulated time: pedesis writes it as log/time."""
+    value = (snap.log or {}).get("time")
+    return float(np.ravel(value)[0]) if value is not None else float(snap.configuration.step)
+
+
+def _x_axis_rotated(q):
+    """The x axis rotated by unit quaternions q = (w, x, y, z) (..., 4): the first column
+    of the rotation matrix, as HOOMD-blue and pedesis store a director."""
+    w, x, y, z = np.moveaxis(q / np.linalg.norm(q, axis=-1, keepdims=True), -1, 0)
+    return np.stack([1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)],
+                    axis=-1)

@@ -13,14 +13,24 @@ FORMATS = (".png", ".pdf", ".svg")
 
 
 def parse_args(description, default_name):
-    """RUN_DIR and --out; the default output is RUN_DIR/default_name. argparse itself
-    exits with 2 on a usage error, the status of bad input."""
+    """RUN_DIR and --out; the default output is RUN_DIR/default_name."""
+    a = parse(description, default_name)
+    return a.run_dir, a.out
+
+
+def parse(description, default_name, options=None):
+    """The arguments: RUN_DIR, --out (default RUN_DIR/default_name) and what
+    ``options(parser)`` adds. argparse itself exits with 2 on a usage error, the status of
+    bad input."""
     p = argparse.ArgumentParser(description=description)
     p.add_argument("run_dir", type=Path, help="a pedesis run directory")
     p.add_argument("--out", type=Path, help=f"output file (default RUN_DIR/{default_name})")
+    if options is not None:
+        options(p)
     a = p.parse_args()
-    out = a.out if a.out is not None else a.run_dir / default_name
-    return a.run_dir, out
+    if a.out is None:
+        a.out = a.run_dir / default_name
+    return a
 
 
 def check_output(out):

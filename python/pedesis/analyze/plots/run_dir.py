@@ -327,3 +327,32 @@ def _last_gsd_frame(run, path):
         time = step * float(dt) if dt is not None else float("nan")
     return Frame(time, types, mass, velocity, names,
                  f"{path.name} (last frame, step {step}; float32 velocities)")
+
+
+def read_trajectory(run, most=200, last=None):
+    """The run's trajectory.gsd as a pedesis.analyze Trajectory: at most ``most`` frames
+    evenly spread over the run (or over its ``last`` frames), the last one included; its
+    faults as InputError."""
+    import gsd.hoomd
+
+    from ..frames import read_frames
+
+    path = run.path / "trajectory.gsd"
+    if not path.is_file():
+        raise InputError(f"{path}: missing; this figure reads GSD frames: add \"gsd\" to "
+                         "[output] formats and run again")
+    try:
+        with gsd.hoomd.open(str(path), "rb") as traj:
+            count = len(traj)
+        first = 0 if last is None else max(0, count - last)
+        picks = [first + k for k in frame_picks(count - first, most)]
+        return read_frames(str(run.path), picks)
+    except (OSError, RuntimeError, ValueError, KeyError) as e:
+        raise InputError(f"{path}: cannot be read as GSD: {e}") from None
+
+
+def frame_picks(count, most):
+    """At most ``most`` frame indices out of ``count``, evenly spread, the last included."""
+    if count <= most:
+        return list(range(count))
+    return sorted({int(round(k)) for k in np.linspace(0, count - 1, most)})

@@ -1,0 +1,88 @@
+"""TOML configs of the validation runs, written as text (docs/config.md)."""
+import math
+
+
+def box_length(dimension, count, radius, packing):
+    """Edge of the square/cubic box that ``count`` particles of ``radius`` fill to
+    ``packing``."""
+    one = math.pi * radius ** 2 if dimension == 2 else 4.0 / 3.0 * math.pi * radius ** 3
+    return (count * one / packing) ** (1.0 / dimension)
+
+
+def species_tables(species):
+    """[[species]] tables from (name, count, radius, mass) tuples."""
+    return "".join(f"[[species]]\nname = \"{n}\"\ncount = {c}\nradius = {r}\nmass = {m}\n\n"
+                   for n, c, r, m in species)
+
+
+def hard_gas(dimension, species, length, seed, time, log_interval, boundary="periodic",
+             positions="random", dynamics="event", restitution=1.0, quantities=None,
+             extra="", velocities="maxwell_boltzmann", stop=None):
+    """A hard-particle run (event or stepped engine): a Maxwell-Boltzmann start at T = 1
+    (or ``velocities``, speed 1), no frames, a log row every ``log_interval``, to ``time``
+    (or the [run] line ``stop``)."""
+    log = "" if quantities is None else f"[log]\nquantities = {list(quantities)!r}\n"
+    event = f"[event]\nrestitution = {restitution}\n" if dynamics == "event" else ""
+    return f"""dimension = {dimension}
+dynamics = "{dynamics}"
+seed = {seed}
+
+[box]
+length = {length!r}
+boundary = "{boundary}"
+
+{species_tables(species)}[initial]
+positions = "{positions}"
+velocities = "{velocities}"
+temperature = 1.0
+speed = 1.0
+
+{event}{extra}
+[run]
+{stop or f"time = {time}"}
+
+[output]
+log_interval = {log_interval}
+formats = []
+progress = false
+
+{log}""".replace("'", '"')
+
+
+def soft_run(dimension, dynamics, count, length, seed, steps, dt, log_every, snapshot_every,
+             forces="", integrators="", positions="random", radius=0.5, extra=""):
+    """A soft/active run (brownian, langevin, nve) in a periodic box: the [[force]] and
+    [[integrator]] tables as given, GSD frames every ``snapshot_every`` steps."""
+    return f"""dimension = {dimension}
+dynamics = "{dynamics}"
+seed = {seed}
+
+[box]
+length = {length!r}
+
+[[species]]
+name = "A"
+count = {count}
+radius = {radius}
+
+[initial]
+positions = "{positions}"
+{extra}
+{forces}
+{integrators}
+[run]
+steps = {steps}
+dt = {dt}
+
+[output]
+log_every = {log_every}
+snapshot_every = {snapshot_every}
+formats = ["gsd"]
+progress = false
+"""
+
+
+def table(kind, name, **keys):
+    """One [[kind]] table (force, torque, integrator) with its keys."""
+    body = "".join(f"{k} = {v!r}\n".replace("'", '"') for k, v in keys.items())
+    return f"[[{kind}]]\nname = \"{name}\"\n{body}\n"

@@ -1,0 +1,121 @@
+"""pedesis validate: its quick suite passes on this machine through the CLI and writes its
+report; a failing case makes the exit status 1; and its reference formulas hold where
+they are known independently."""
+import math
+import re
+import subprocess
+
+import numpy as np
+
+from pedesis import validate
+from pedesis.validate import __main__ as validate_main
+from pedesis.validate import stats, theory
+from pedesis.validate.cases import liquid
+from pedesis.validate.checks import CaseResult, Check
+
+
+def test_quick_suite_passes_and_writes_its_report(pedesis_bin, tmp_path):
+    out = tmp_path / "report"
+    r = subprocess.run([pedesis_bin, "validate", "--quick", "--out", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    report = (out / "report.md").read_text()
+    quick = [name for name, _, in_quick in validate.CASES if in_quick]
+    assert f"{len(quick)} of {len(quick)} cases passed" in report
+    for name in quick:
+        # a table row per check, each passing, and the case's figure
+        rows = [line for line in report.splitlines() if line.startswith(f"| {name} |")]
+        assert rows and all(line.endswith("| pass |") for line in rows), name
+        assert (out / "figures" / f"{name}.png").stat().st_size > 1000, name
+    # the console table names every case too
+    for name in quick:
+        assert re.search(rf"^{name}\s", r.stdout, re.M), name
+    assert not (out / "report.md.part").exists()
+
+
+def test_a_failing_case_fails_the_suite(tmp_path, monkeypatch, capsys):
+    def wrong(ctx):
+        return CaseResult("wrong", "A wrong result", "nothing", [
+            Check.near("x", 1.2, 0.01, 1.0, 0.05, "exact", "made up")])
+
+    def broken(ctx):
+        raise validate.CaseError("the run wrote no log")
+
+    monkeypatch.setattr(validate_main, "CASES", (("wrong", wrong, True), ("broken", broken, True)))
+    monkeypatch.setenv("PEDESIS_BIN", "/bin/true")
+    assert validate_main.main(["--quick", "--out", str(tmp_path)]) == 1
+    report = (tmp_path / "report.md").read_text()
+    assert "0 of 2 cases passed" in report
+    assert "| wrong | x | 1.200 ± 0.010 | 1 ± 0.05 | exact | FAIL |" in report
+    assert "the run wrote no log" in report
+    assert "failed: wrong, broken" in capsys.readouterr().out
+
+
+def test_a_run_too_short_for_its_tolerance_never_passes():
+    # inside the tolerance, but with an error above a third of it
+    check = Check.near("x", 1.01, 0.02, 1.0, 0.05, "exact", "made up")
+    assert not check.passed and "too short" in check.verdict
+
+
+def test_unknown_case_is_refused_with_exit_two(pedesis_bin):
+    r = subprocess.run([pedesis_bin, "validate", "--only", "no_such_case"], capture_output=True,
+                       text=True)
+    assert r.returncode == 2
+    assert r.stderr.count("\n") == 1 and "no_such_case" in r.stderr
+
+
+def test_hard_disk_virial_series_meets_henderson_where_both_are_accurate():
+    # at eta = 0.1 the series converges to 1e-8 and Henderson's formula is within 1e-4
+    z, bound = theory.hard_disk_z_virial(0.1)
+    assert bound < 1e-7
+    assert abs(z - theory.hard_disk_z_henderson(0.1)) < 1e-4 * z
+
+
+def test_carnahan_starling_kolafa_meets_published_hard_sphere_points():
+    # HOOMD-blue's validation references: Z = 4.2952 at rho sigma^3 = 0.6 and 6.6566 at
+    # 0.75; the formula's stated accuracy is ~2e-4
+    for rho, z in ((0.6, 4.2952), (0.75, 6.6566)):
+        assert abs(theory.hard_sphere_z_csk(math.pi / 6 * rho) / z - 1) < 3e-4
+
+
+def test_garzo_dufty_limits():
+    # equal masses, or elastic collisions: equal temperatures
+    assert theory.garzo_dufty_temperature_ratio((1.0, 1.0), (0.5, 0.5), 0.8, 2) == 1.0
+    assert theory.garzo_dufty_temperature_ratio((1.0, 4.0), (0.5, 0.5), 1.0, 2) == 1.0
+    # the heavy species is hotter, and more so as dissipation grows
+    r9 = theory.garzo_dufty_temperature_ratio((1.0, 4.0), (0.5, 0.5), 0.9, 2)
+    r7 = theory.garzo_dufty_temperature_ratio((1.0, 4.0), (0.5, 0.5), 0.7, 2)
+    assert 1.0 < r9 < r7
+
+
+def test_garzo_dufty_cooling_rate_of_one_species_is_the_textbook_one():
+    # equal masses and temperatures: zeta = (2/d) pi^((d-1)/2) / Gamma(d/2) (1 - xi^2)
+    # n chi sigma^(d-1) sqrt(T/m), the rate behind Haff's law; the function leaves out the
+    # factor common to both species, (2/d) pi^((d-1)/2)/Gamma(d/2) n chi sigma^(d-1) 2^(3/2)
+    for xi in (0.5, 0.9, 1.0):
+        rate = theory._partial_cooling_rate(0, (1.0, 1.0), (1.0, 1.0), (0.5, 0.5), xi, 2)
+        assert abs(rate * 2 ** 1.5 - (1 - xi ** 2)) < 1e-12
+    # at the elastic (wrong) ratio, an inelastic 1:4 mixture's species cool unequally; at
+    # the theory's ratio, equally
+    masses, xi = (1.0, 4.0), 0.9
+    unequal = [theory._partial_cooling_rate(i, (1.0, 1.0), masses, (0.5, 0.5), xi, 2)
+               for i in range(2)]
+    assert unequal[0] / unequal[1] > 1.1
+    ratio = theory.garzo_dufty_temperature_ratio(masses, (0.5, 0.5), xi, 2)
+    equal = [theory._partial_cooling_rate(i, (1.0, ratio), masses, (0.5, 0.5), xi, 2)
+             for i in range(2)]
+    assert abs(equal[0] / equal[1] - 1.0) < 1e-9
+
+
+def test_block_mean_error_matches_independent_samples():
+    rng = np.random.default_rng(5)
+    errors = [stats.block_mean(rng.normal(0.0, 1.0, 10000), 10)[1] for _ in range(200)]
+    # sigma / sqrt(n) = 0.01; the estimate from 10 blocks scatters by ~24 %
+    assert abs(np.mean(errors) / 0.01 - 1.0) < 0.06
+
+
+def test_lennard_jones_tail_corrections():
+    # Allen & Tildesley's formulas at rho = 0.776, rc = 3: u = -0.24065, p = -0.37358
+    u, p = liquid.tail_corrections(0.776, 3.0)
+    assert abs(u - 8 / 3 * math.pi * 0.776 * (3.0 ** -9 / 3 - 3.0 ** -3)) < 1e-12
+    assert abs(u + 0.2407) < 1e-3 and abs(p + 0.3736) < 1e-3
