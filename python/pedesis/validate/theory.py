@@ -33,9 +33,10 @@ def hard_disk_z_henderson(eta):
 def hard_sphere_z_csk(eta):
     """The Carnahan-Starling-Kolafa equation of state (Boublik & Nezbeda, Collect. Czech.
     Chem. Commun. 51, 2301 (1986)): Z = (1 + eta + eta^2 - (2/3) eta^3 (1 + eta)) /
-    (1 - eta)^3. It holds the high-precision simulation data of Kolafa, Labik &
-    Malijevsky (PCCP 6, 2335 (2004)) and the reference Z = 4.2952 at rho sigma^3 = 0.6 of
-    HOOMD-blue's validation suite to ~2e-4; Carnahan-Starling is 0.27 % low at eta = 0.3."""
+    (1 - eta)^3. It meets the reference points of HOOMD-blue's validation suite, Z =
+    4.2952 at rho sigma^3 = 0.6 and 6.6566 at 0.75, to 3e-5 and 2e-4 (Kolafa, Labik &
+    Malijevsky's own fit, PCCP 6, 2335 (2004), is not used here); Carnahan-Starling is
+    0.27 % low at eta = 0.3."""
     return (1.0 + eta + eta ** 2 - 2.0 / 3.0 * eta ** 3 * (1.0 + eta)) / (1.0 - eta) ** 3
 
 

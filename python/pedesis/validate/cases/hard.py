@@ -78,8 +78,7 @@ def hard_sphere_eos(ctx):
     return _equation_of_state(
         ctx, "hard_sphere_eos", "Hard-sphere equation of state and mean free time", 3, eta,
         count, 3.0, t_run, theory.hard_sphere_z_csk(eta),
-        "Carnahan-Starling-Kolafa, as Kolafa, Labik & Malijevsky 2004's data (Carnahan-"
-        "Starling: 3.9738)",
+        "Carnahan-Starling-Kolafa (Boublik & Nezbeda 1986; Carnahan-Starling: 3.9738)",
         ctx.pick(0.002, 0.001), positions="fcc")
 
 
