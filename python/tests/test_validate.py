@@ -3,7 +3,9 @@ report; a failing case makes the exit status 1; and its reference formulas hold 
 they are known independently."""
 import math
 import re
+import signal
 import subprocess
+import time
 
 import numpy as np
 
@@ -119,3 +121,20 @@ def test_lennard_jones_tail_corrections():
     u, p = liquid.tail_corrections(0.776, 3.0)
     assert abs(u - 8 / 3 * math.pi * 0.776 * (3.0 ** -9 / 3 - 3.0 ** -3)) < 1e-12
     assert abs(u + 0.2407) < 1e-3 and abs(p + 0.3736) < 1e-3
+
+
+def test_a_signal_stops_the_suite_and_its_runs(pedesis_bin, tmp_path):
+    # SIGTERM 3 s into a case of ~30 s: pedesis validate ends within seconds by the same
+    # signal, with no report and no pedesis run left behind
+    out = tmp_path / "report"
+    suite = subprocess.Popen([pedesis_bin, "validate", "--only", "lennard_jones,hard_sphere_eos",
+                              "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True)
+    time.sleep(3.0)
+    suite.send_signal(signal.SIGTERM)
+    _, err = suite.communicate(timeout=20)
+    assert suite.returncode == -signal.SIGTERM, err
+    assert "interrupted" in err
+    assert not (out / "report.md").exists()
+    left = subprocess.run(["pgrep", "-f", str(out)], capture_output=True, text=True).stdout
+    assert left == "", left

@@ -4,6 +4,7 @@ passes, 1 when one fails, 2 for bad arguments."""
 import argparse
 import os
 import platform
+import signal
 import sys
 import time
 from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -52,6 +53,10 @@ def run_case(name, fn, ctx):
     return result
 
 
+def _interrupt(number, frame):
+    raise KeyboardInterrupt
+
+
 def main(argv):
     args = parse(argv)
     try:
@@ -77,13 +82,24 @@ def main(argv):
           flush=True)
     start = time.monotonic()
     results = {}
-    with ThreadPoolExecutor(max_workers=args.jobs) as pool:
+    # SIGTERM and SIGHUP end the suite like Ctrl-C: the runs under way are stopped, so
+    # that none goes on after the suite has ended
+    for number in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(number, _interrupt)
+    pool = ThreadPoolExecutor(max_workers=args.jobs)
+    try:
         futures = {pool.submit(run_case, name, fn, ctx): name for name, fn in cases}
         for done, future in enumerate(as_completed(futures), start=1):
             r = future.result()
             results[r.name] = r
             print(f"[{done}/{len(cases)}] {r.name}: {'pass' if r.passed else 'FAIL'} "
                   f"({r.seconds:.0f} s)", flush=True)
+    except KeyboardInterrupt:
+        ctx.stop()
+        pool.shutdown(wait=True, cancel_futures=True)
+        sys.stderr.write("pedesis validate: interrupted; no report written\n")
+        return 130
+    pool.shutdown()
     ordered = [results[name] for name, _ in cases]
     seconds = time.monotonic() - start
     print()

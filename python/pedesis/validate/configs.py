@@ -20,7 +20,8 @@ def hard_gas(dimension, species, length, seed, time, log_interval, boundary="per
              extra="", velocities="maxwell_boltzmann", stop=None):
     """A hard-particle run (event or stepped engine): a Maxwell-Boltzmann start at T = 1
     (or ``velocities``, speed 1), no frames, a log row every ``log_interval``, to ``time``
-    (or the [run] line ``stop``)."""
+    (or the [run] line ``stop``). ``extra`` follows the [event] table's restitution: more
+    [event] keys, or tables of their own."""
     log = "" if quantities is None else f"[log]\nquantities = {list(quantities)!r}\n"
     event = f"[event]\nrestitution = {restitution}\n" if dynamics == "event" else ""
     return f"""dimension = {dimension}

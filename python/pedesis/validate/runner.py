@@ -3,6 +3,7 @@ and reads what they wrote."""
 import os
 import shutil
 import subprocess
+import threading
 from pathlib import Path
 
 from ..analyze.plots.run_dir import InputError, read_log
@@ -25,6 +26,9 @@ class Context:
         self.binary = binary
         self.workdir = Path(workdir)
         self.quick = quick
+        self._running = set()
+        self._lock = threading.Lock()
+        self._stopped = False
 
     def pick(self, quick, full):
         """The quick mode's value or the full suite's."""
@@ -39,12 +43,30 @@ class Context:
         config_file.write_text(config)
         out = folder / name
         env = dict(os.environ, OMP_NUM_THREADS="1")
-        done = subprocess.run([self.binary, "run", str(config_file), "--out", str(out),
-                               "--threads", "1"], capture_output=True, text=True, env=env)
-        if done.returncode != 0:
-            last = (done.stderr.strip().splitlines() or ["(no message)"])[-1]
-            raise CaseError(f"pedesis run {config_file} failed with exit {done.returncode}: {last}")
+        with self._lock:
+            if self._stopped:
+                raise CaseError("stopped")
+            run = subprocess.Popen([self.binary, "run", str(config_file), "--out", str(out),
+                                    "--threads", "1"], stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True, env=env)
+            self._running.add(run)
+        try:
+            _, stderr = run.communicate()
+        finally:
+            with self._lock:
+                self._running.discard(run)
+        if run.returncode != 0:
+            last = (stderr.strip().splitlines() or ["(no message)"])[-1]
+            raise CaseError(f"pedesis run {config_file} failed with exit {run.returncode}: {last}")
         return out
+
+    def stop(self):
+        """Ends the runs under way (SIGTERM: each writes its interrupted end) and starts no
+        more; for a suite that was interrupted."""
+        with self._lock:
+            self._stopped = True
+            for run in self._running:
+                run.terminate()
 
     @staticmethod
     def log(run_dir):

@@ -144,10 +144,10 @@ def hard_disk_dense(ctx):
     # where they stay
     t_eq, t_run = 500.0, ctx.pick(100.0, 600.0)
     interval = t_run / (BLOCKS * 4)
-    extra = f"growth_rate = {growth_rate}\ngrowth_packing_fraction = {eta}\n"
+    growth = f"growth_rate = {growth_rate}\ngrowth_packing_fraction = {eta}\n"  # in [event]
     config = hard_gas(2, [("A", count, radius, 1.0)], length, 11, t_grow + t_eq + t_run,
                       interval, quantities=["time", "packing_fraction", "compressibility"],
-                      extra="").replace("[event]\n", "[event]\n" + extra)
+                      extra=growth)
     log = ctx.log(ctx.run("hard_disk_dense", "run", config))
     keep = log["time"] > t_grow + t_eq + 1e-9
     if abs(log["packing_fraction"][keep][0] - eta) > 1e-9:
