@@ -14,6 +14,7 @@ def main(argv):
     kind = argv[0]
     try:
         plot = importlib.import_module(f"pedesis.analyze.plots.{kind}")
+        from .plots.run_dir import main_guard
     except ImportError as e:
         if e.name not in ("numpy", "matplotlib", "scipy"):
             raise
@@ -23,7 +24,7 @@ def main(argv):
         return 2
     # the figure's command line reads sys.argv, as when pedesis analyze ran a script
     sys.argv = [f"pedesis analyze {kind}", *argv[1:]]
-    return plot.main_guard(plot.main)
+    return main_guard(plot.main)
 
 
 if __name__ == "__main__":

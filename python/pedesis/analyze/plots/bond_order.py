@@ -8,13 +8,11 @@ import numpy as np
 
 from .. import psi6, steinhardt
 from . import figure
-from .run_dir import Run, read_trajectory, main_guard
+from .run_dir import read_trajectory
 
 
 def main():
-    a = figure.parse(__doc__.split("\n")[0], "bond_order.png")
-    figure.check_output(a.out)
-    run = Run(a.run_dir)
+    a, run = figure.open_run(__doc__.split("\n")[0], "bond_order.png")
     traj = read_trajectory(run, most=100)
     t = traj.times
     plt = figure.pyplot()

@@ -12,7 +12,7 @@ import numpy as np
 
 from .. import clusters, fraction_bins, histogram_peaks, local_area_fraction, phase_fractions, polar_order
 from . import figure
-from .run_dir import InputError, Run, read_trajectory, main_guard
+from .run_dir import InputError, read_trajectory
 
 
 def options(p):
@@ -24,6 +24,11 @@ def options(p):
                    help="neighbours that make a particle dense (default 5; 0: every particle)")
 
 
+def check_options(a):
+    if a.cell <= 0 or a.contact <= 0 or a.min_neighbours < 0:
+        raise InputError("--cell and --contact must be positive, --min-neighbours >= 0")
+
+
 def frame_numbers(x, traj, a):
     """The local fractions of one frame's cells and the largest dense cluster's share."""
     diameter = float(np.mean(traj.diameters))
@@ -33,11 +38,7 @@ def frame_numbers(x, traj, a):
 
 
 def main():
-    a = figure.parse(__doc__.split("\n")[0], "clusters.png", options)
-    if a.cell <= 0 or a.contact <= 0 or a.min_neighbours < 0:
-        raise InputError("--cell and --contact must be positive, --min-neighbours >= 0")
-    figure.check_output(a.out)
-    run = Run(a.run_dir)
+    a, run = figure.open_run(__doc__.split("\n")[0], "clusters.png", options, check_options)
     traj = read_trajectory(run, most=50)
     if not np.all(traj.diameters > 0):
         raise InputError(f"{run.path}/trajectory.gsd: the particles have no diameters")

@@ -6,16 +6,21 @@ import os
 import textwrap
 from pathlib import Path
 
-from .run_dir import InputError
+from .run_dir import InputError, Run
 
 DPI = 150
 FORMATS = (".png", ".pdf", ".svg")
 
 
-def parse_args(description, default_name):
-    """RUN_DIR and --out; the default output is RUN_DIR/default_name."""
-    a = parse(description, default_name)
-    return a.run_dir, a.out
+def open_run(description, default_name, options=None, check=None):
+    """What every figure does first: its command line (see parse), ``check(args)`` for
+    options of its own (raising InputError), the output checked before any work, and the
+    run directory opened. Returns (args, Run)."""
+    a = parse(description, default_name, options)
+    if check is not None:
+        check(a)
+    check_output(a.out)
+    return a, Run(a.run_dir)
 
 
 def parse(description, default_name, options=None):

@@ -9,12 +9,11 @@ v0 = alpha/gamma, D_t = T/gamma (brownian or langevin integrator), D_r = T_r/gam
 
 Usage: msd.py RUN_DIR [--out FILE]   (default RUN_DIR/msd.png)
 """
-import sys
 
 import numpy as np
 
 from . import figure
-from .run_dir import InputError, Run, main_guard, require_columns
+from .run_dir import InputError, require_columns
 
 
 def free_abp_msd(t, dim, Dt, v0, Dr):
@@ -104,9 +103,8 @@ def species_weights(run):
 
 
 def main():
-    run_path, out = figure.parse_args(__doc__.split("\n")[0], "msd.png")
-    figure.check_output(out)
-    run = Run(run_path)
+    a, run = figure.open_run(__doc__.split("\n")[0], "msd.png")
+    out = a.out
     log_path = run.path / "log.csv"
     log = run.log()
     require_columns(log, log_path, ["msd"],

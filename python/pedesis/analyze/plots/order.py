@@ -5,16 +5,14 @@ polar_order column) against time, with the level 1/sqrt(N) of random directors.
 Usage: order.py RUN_DIR [--out FILE]   (default RUN_DIR/order.png)
 """
 import math
-import sys
 
 from . import figure
-from .run_dir import InputError, Run, main_guard, require_columns
+from .run_dir import InputError, require_columns
 
 
 def main():
-    run_path, out = figure.parse_args(__doc__.split("\n")[0], "order.png")
-    figure.check_output(out)
-    run = Run(run_path)
+    a, run = figure.open_run(__doc__.split("\n")[0], "order.png")
+    out = a.out
     log_path = run.path / "log.csv"
     log = run.log()
     require_columns(log, log_path, ["polar_order"],

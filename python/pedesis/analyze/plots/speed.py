@@ -9,12 +9,11 @@ Usage: speed.py RUN_DIR [--out FILE]   (default RUN_DIR/speed_distribution.png)
 """
 import csv
 import math
-import sys
 
 import numpy as np
 
 from . import figure
-from .run_dir import InputError, Run, main_guard
+from .run_dir import InputError
 
 
 def speed_cdf(dim, v, T, m):
@@ -79,9 +78,8 @@ def samples(frame, dim):
 
 
 def main():
-    run_path, out = figure.parse_args(__doc__.split("\n")[0], "speed_distribution.png")
-    figure.check_output(out)
-    run = Run(run_path)
+    a, run = figure.open_run(__doc__.split("\n")[0], "speed_distribution.png")
+    out = a.out
     dim = run.dimension
     frame = run.final_frame()
     if frame.velocity.shape[1] != dim:

@@ -8,15 +8,13 @@ import numpy as np
 
 from .. import rdf, structure_factor, structure_factor_from_rdf
 from . import figure
-from .run_dir import Run, read_trajectory, main_guard
+from .run_dir import read_trajectory
 
 FRAMES = 10
 
 
 def main():
-    a = figure.parse(__doc__.split("\n")[0], "structure.png")
-    figure.check_output(a.out)
-    run = Run(a.run_dir)
+    a, run = figure.open_run(__doc__.split("\n")[0], "structure.png")
     traj = read_trajectory(run, most=FRAMES, last=FRAMES)
     # the starting state (often a lattice) is no sample of the run's structure
     positions = traj.positions[traj.times > traj.times[0]] if len(traj.times) > 1 else traj.positions

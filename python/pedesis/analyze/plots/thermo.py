@@ -5,10 +5,9 @@ columns the log has (event, stepped and soft runs log different ones).
 
 Usage: thermo.py RUN_DIR [--out FILE]   (default RUN_DIR/thermo.png)
 """
-import sys
 
 from . import figure
-from .run_dir import InputError, Run, main_guard
+from .run_dir import InputError
 
 
 def panels(log, dim):
@@ -49,9 +48,8 @@ def label(column, prefix_title):
 
 
 def main():
-    run_path, out = figure.parse_args(__doc__.split("\n")[0], "thermo.png")
-    figure.check_output(out)
-    run = Run(run_path)
+    a, run = figure.open_run(__doc__.split("\n")[0], "thermo.png")
+    out = a.out
     log_path = run.path / "log.csv"
     log = run.log()
     rows = panels(log, run.dimension)

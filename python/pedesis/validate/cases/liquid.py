@@ -2,8 +2,6 @@
 Website's Monte Carlo data."""
 import math
 
-import numpy as np
-
 from ..checks import CaseResult, Check
 from ..configs import soft_run, table
 from ..stats import block_mean
