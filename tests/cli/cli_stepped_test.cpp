@@ -169,13 +169,26 @@ TEST_F(CliStepped, ParticleTooFastMidRunStopsNamingStepAndParticle) {
           "[stepped]\ndt = 0.2\n[run]\ntime = 10.0\n[output]\nlog_interval = 0.4\n");
     const CliResult r = run_pedesis("run fast.toml --out out", dir);
     EXPECT_EQ(r.exit_code, 3) << r.output;
-    for (const char* f : {"at step 6 particle 1 (species 'light')", "radii in one step",
-                          "reduce [stepped] dt to", "out)"})
+    // no checkpoint was due before the stop, and the message names none
+    for (const char* f :
+         {"at step 6 particle 1 (species 'light')", "radii in one step", "reduce [stepped] dt to",
+          "it and the log are in out; no checkpoint was written before the failure)"})
         EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in " << r.output;
     // the log and frames up to the stop are kept, complete; no summary
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / "log.csv"));
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / "trajectory.gsd"));
     EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "checkpoint.bin"));
+
+    // with checkpoints every 0.4 the last one (t = 0.8) is there, and named
+    std::string with = read("fast.toml");
+    with += "checkpoint_interval = 0.4\n";
+    write("checkpointed.toml", with);
+    const CliResult c = run_pedesis("run checkpointed.toml --out cp", dir);
+    EXPECT_EQ(c.exit_code, 3) << c.output;
+    EXPECT_NE(c.output.find("it, the log and the last checkpoint are in cp)"), std::string::npos)
+        << c.output;
+    EXPECT_TRUE(std::filesystem::exists(dir / "cp" / "checkpoint.bin"));
 }
 
 TEST_F(CliStepped, BadConfigs) {

@@ -5,6 +5,8 @@
 // on the thread count, needs_rebuild follows the
 // skin/2 rule without mistaking a periodic wrap for motion, buffers are reused, and bad
 // parameters are reported by name.
+#include "support/soft_builder.hpp"
+
 #include "pedesis/core/rng.hpp"
 #include "pedesis/spatial/neighbor_list.hpp"
 
@@ -13,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <utility>
@@ -119,9 +122,23 @@ void check_against_brute_force(const Box<D>& box, const std::vector<Vec<D>>& pos
         EXPECT_EQ(nl.end(i) - nl.begin(i), static_cast<std::ptrdiff_t>(nl.count(i)));
     }
     EXPECT_EQ(total, nl.entries());
+    // every pair closer than r_list, none twice, and none further than r_list to within the
+    // list's rounding margin (a relative 1e-12 on r^2: pairs a few ulps from r_list
+    // round either way)
     const PairList expect = brute_pairs(box, pos, nl.r_list());
     EXPECT_GT(expect.size(), 0u) << "case too sparse to test anything";
-    EXPECT_EQ(listed_pairs(nl), expect);
+    const PairList listed = listed_pairs(nl);
+    EXPECT_EQ(std::adjacent_find(listed.begin(), listed.end()), listed.end()) << "a pair twice";
+    PairList missing, extra;
+    std::set_difference(expect.begin(), expect.end(), listed.begin(), listed.end(),
+                        std::back_inserter(missing));
+    const PairList outer = brute_pairs(box, pos, nl.r_list() * (1.0 + 1e-12));
+    std::set_difference(listed.begin(), listed.end(), outer.begin(), outer.end(),
+                        std::back_inserter(extra));
+    EXPECT_TRUE(missing.empty()) << missing.size() << " pairs missing, the first ("
+                                 << (missing.empty() ? 0 : missing[0].first) << ", "
+                                 << (missing.empty() ? 0 : missing[0].second) << ")";
+    EXPECT_TRUE(extra.empty()) << extra.size() << " pairs beyond r_list";
     check_colouring(nl);
 }
 
@@ -191,6 +208,86 @@ TEST(NeighborList, MatchesBruteForceClustered) {
 
 // Between wrapping and the next build a particle may sit a little outside a periodic
 // box; its cell and its minimum image must still come out right.
+// Perfect fcc crystals at in.lj's density (0.8442) with Lennard-Jones cutoffs and skins:
+// every cell holds the same number of particles and every row the most candidates, the
+// geometry whose build once repeated its pass for ever (4000 atoms, cut 2.5, skin 0.3:
+// the storage grown after an overflow was again too small). m^3 unit cells, m = 3..12.
+TEST(NeighborList, MatchesBruteForceOnPerfectFccLattices) {
+    for (int m = 3; m <= 12; ++m)
+        for (const auto& [r_cut, skin] : {std::pair{2.5, 0.3}, {2.5, 0.5}, {3.0, 0.3}}) {
+            const auto s = test::fcc_soft_state(m, 0.8442);
+            if (s.box.length(0) < 2.0 * (r_cut + skin)) continue;
+            SCOPED_TRACE("fcc " + std::to_string(m) + "^3 cells");
+            check_against_brute_force(s.box, s.p.position, r_cut, skin);
+        }
+}
+
+// A simple cubic (3D) or square (2D) lattice of n sites per axis, spacing a, in a
+// periodic box of n a: sites exactly on -L/2 and on every cell face the grid puts at a
+// multiple of a.
+template <int D> std::vector<Vec<D>> cubic_lattice(int n, double a) {
+    std::vector<Vec<D>> pos;
+    std::array<int, D> c{};
+    const double half = 0.5 * n * a;
+    while (true) {
+        Vec<D> r;
+        for (int k = 0; k < D; ++k) r[k] = c[k] * a - half;
+        pos.push_back(r);
+        int k = 0;
+        while (k < D && ++c[k] == n) c[k++] = 0;
+        if (k == D) break;
+    }
+    return pos;
+}
+
+// Degenerate geometry against brute force: lattices whose box is an exact multiple of
+// the list range (cells of exactly r_list or r_list / 2), and one ulp either side of it;
+// a site exactly at -L/2 and one a ulp inside +L/2 on every axis; skins from 0 to more
+// than the cutoff; 1 and 2 threads on lattices large enough to run in parallel. Each
+// failure names its case.
+template <int D> void check_lattices_at_multiples_of_the_range(const std::vector<int>& sizes) {
+    const int saved = omp_get_max_threads();
+    int cases = 0;
+    for (int n : sizes)
+        for (int per_range : {2, 3}) // lattice spacings per list range
+            for (int nudge : {-1, 0, 1})
+                for (double skin_fraction : {0.0, 0.25, 1.5})
+                    for (int threads : {1, 2}) {
+                        const double a = 1.0;
+                        std::vector<Vec<D>> pos = cubic_lattice<D>(n, a);
+                        double L = n * a;
+                        if (nudge != 0) L = std::nextafter(L, nudge > 0 ? 2.0 * L : 0.0);
+                        Vec<D> tip;
+                        for (int k = 0; k < D; ++k) tip[k] = std::nextafter(0.5 * L, 0.0);
+                        pos.push_back(tip);
+                        const double r_list = per_range * a;
+                        if (L < 2.0 * r_list) continue;
+                        const double r_cut = r_list / (1.0 + skin_fraction);
+                        std::array<bool, D> periodic;
+                        periodic.fill(true);
+                        omp_set_num_threads(threads);
+                        SCOPED_TRACE("lattice " + std::to_string(n) + "^" + std::to_string(D) +
+                                     ", L = n a " +
+                                     (nudge ? (nudge > 0 ? "+ 1 ulp" : "- 1 ulp") : "exactly") +
+                                     ", r_list = " + std::to_string(per_range) +
+                                     " a, skin = " + std::to_string(skin_fraction) +
+                                     " r_cut, threads " + std::to_string(threads));
+                        check_against_brute_force(Box<D>(Vec<D>::filled(L), periodic), pos, r_cut,
+                                                  r_list - r_cut);
+                        ++cases;
+                    }
+    omp_set_num_threads(saved);
+    EXPECT_GT(cases, 0);
+}
+
+TEST(NeighborList, MatchesBruteForceOnSquareLatticesAtMultiplesOfTheRange) {
+    check_lattices_at_multiples_of_the_range<2>({4, 5, 6, 7, 8, 9, 12, 16, 20, 33, 65});
+}
+
+TEST(NeighborList, MatchesBruteForceOnCubicLatticesAtMultiplesOfTheRange) {
+    check_lattices_at_multiples_of_the_range<3>({4, 5, 6, 7, 8, 9, 12, 17});
+}
+
 TEST(NeighborList, MatchesBruteForceWithPositionsJustOutsideThePeriodicBox) {
     const Box<2> box(Vec<2>{{20.0, 11.0}}, {true, true});
     auto pos = test::random_positions(box, 600, 8, 6);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iterator>
 #include <stdexcept>
 
@@ -233,9 +234,14 @@ template <int D> std::string Simulation<D>::failure_note() const {
                            "checkpoint it started from, {}; the log is in {})",
                            options_.restart ? options_.restart->string() : std::string("-"),
                            options_.out_dir.string());
-    return fmt::format(" (the last good snapshot is frame {} at t = {:.6g}; it, the log and the "
-                       "last checkpoint are in {})",
-                       engine_.frames() - 1, last_frame_time_, options_.out_dir.string());
+    // name only files that exist: a run that fails before its first checkpoint has none
+    const bool checkpoint = std::filesystem::exists(options_.out_dir / "checkpoint.bin");
+    return fmt::format(" (the last good snapshot is frame {} at t = {:.6g}; {} {})",
+                       engine_.frames() - 1, last_frame_time_,
+                       checkpoint ? "it, the log and the last checkpoint are in"
+                                  : "it and the log are in",
+                       options_.out_dir.string() +
+                           (checkpoint ? "" : "; no checkpoint was written before the failure"));
 }
 
 template class Simulation<2>;

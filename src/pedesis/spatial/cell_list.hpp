@@ -194,8 +194,16 @@ template <int D> class CellList {
         // any position within 2^30 cells keeps its true periodic image
         int c = clamped_int(std::floor((r[a] - box_.lo(a)) * inv_w_[a]), -(1 << 30), 1 << 30);
         if (box_.periodic(a)) {
-            c %= n_[a];
-            if (c < 0) c += n_[a];
+            if (r[a] >= box_.lo(a) && r[a] < box_.hi(a)) {
+                // inside the box, only rounding can give n (one ulp below L/2: (L - ulp)
+                // n / L rounds to n); wrapping it to cell 0 would put a particle at +L/2
+                // in the cell at -L/2, and a neighbour list that takes a cell's particles
+                // to lie in it would miss its pairs (found by the lattice tests)
+                c = std::clamp(c, 0, n_[a] - 1);
+            } else {
+                c %= n_[a];
+                if (c < 0) c += n_[a];
+            }
         } else {
             // positions on a wall (or a rounding error past it) belong to the edge cell
             if (c < 0) c = 0;

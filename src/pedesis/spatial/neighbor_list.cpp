@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 
@@ -219,7 +220,12 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     for (std::size_t c = n_cells; c > 0; --c) cell_start_[c] = cell_start_[c - 1];
     cell_start_[0] = 0;
 
-    const double rl2 = r_list_ * r_list_;
+    // A pair at r_list to within rounding is listed: the by-image difference (ri + image
+    // - rj) and the minimum image round the same pair's r^2 differently, by a few ulps,
+    // and a pair the force loop finds inside r_cut = r_list (skin 0) must be in the list.
+    // (A cubic lattice with a site one ulp inside L/2 has pairs at 3 - 4e-15 that the
+    // shifted difference put at exactly 3.)
+    const double rl2 = r_list_ * r_list_ * (1.0 + list_rounding);
     // Wrap is a std::bool_constant, true only with the whole stencil (a periodic axis too
     // short for the half one) for the cells next to a periodic face; with the half
     // stencil each range carries its image (by_image below). Elsewhere a raw difference
@@ -274,12 +280,15 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     // second, in particle order: twice the distance tests.)
     rows_.resize(n);
     std::vector<std::uint32_t>& lengths = cell_of_; // free after the binning above
-    while (true) {
+    // At most two passes: a pass that runs out of storage still counts every row, and the
+    // second has storage that provably suffices (below).
+    for (int pass = 0;; ++pass) {
+        if (pass == 2) throw std::logic_error("neighbour list: the second pass ran out of storage");
         std::atomic<std::size_t> claimed{0};
         std::atomic<bool> overflow{false};
         std::size_t max_candidates = 0; // the most candidates of any particle
         std::uint32_t* const out = neighbors_.get();
-        const std::size_t capacity = capacity_;
+        const std::size_t capacity = capacity_, chunk = chunk_;
 #pragma omp parallel if (sn >= parallel_min)
         {
             std::size_t cur = 0, lim = 0;    // this thread's chunk: [cur, lim)
@@ -289,7 +298,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
             auto place_row = [&](std::size_t cand) -> std::uint32_t* {
                 if (cur + cand <= lim) return out + cur;
                 if (!overflow.load(std::memory_order_relaxed)) {
-                    const std::size_t size = std::max(chunk_entries, cand);
+                    const std::size_t size = std::max(chunk, cand);
                     const std::size_t at = claimed.fetch_add(size, std::memory_order_relaxed);
                     if (at + size <= capacity) {
                         cur = at;
@@ -416,10 +425,18 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                                        longest, (std::size_t{1} << length_bits) - 1));
         entries_ = total;
         if (!overflow.load()) break;
-        // Storage too small (the first build, or the system grew denser): room for every
-        // row plus each thread's partly used chunks, then the pass again.
-        capacity_ = grow(total + static_cast<std::size_t>(omp_get_max_threads() + 1) *
-                                     (chunk_entries + max_candidates));
+        // Storage too small (the first build, or the system grew denser). A thread leaves
+        // a chunk only when the next row's candidates (at most max_candidates) do not fit
+        // in what is left of it, so with chunks of at least 4 max_candidates every chunk it
+        // leaves is at least 3/4 used: the pass claims at most 4/3 of the total plus one
+        // unfinished chunk per thread. (Room for the total plus a chunk per thread was
+        // not enough: in a perfect lattice every row has the most candidates, and with
+        // LJ's 2.5 cutoff in in.lj's fcc crystal, 2300 candidates against chunks of 4096
+        // left half of every chunk empty, so the pass overflowed again, the same
+        // capacity was computed from the same total, and the build repeated for ever.)
+        chunk_ = std::max(chunk_entries, 4 * max_candidates);
+        capacity_ =
+            grow(total + total / 3 + static_cast<std::size_t>(omp_get_max_threads() + 1) * chunk_);
         neighbors_.reset(); // free first so that old and new never coexist
         neighbors_ = std::make_unique_for_overwrite<std::uint32_t[]>(capacity_);
     }

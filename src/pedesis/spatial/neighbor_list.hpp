@@ -176,8 +176,15 @@ template <int D> class NeighborList {
     // word as the CSR offsets took. 40 bits: a dense 3D system with ~80 neighbours
     // passes 32 bits near 5e7 particles, which is a size people run.
     static constexpr int length_bits = 24;
-    // Entries a thread claims at a time while it writes rows.
+    // Entries a thread claims at a time while it writes rows: at least chunk_entries, and
+    // four times the most candidates of a row seen (so that a chunk, abandoned only when
+    // the next row's candidates do not fit, is at least 3/4 used: what bounds the
+    // storage a pass needs, neighbor_list.cpp).
     static constexpr std::size_t chunk_entries = 4096;
+    // Relative margin on r_list^2 for rounding (neighbor_list.cpp): the rows hold every
+    // pair closer than r_list and none further than r_list (1 + list_rounding / 2).
+    static constexpr double list_rounding = 1e-12;
+    std::size_t chunk_ = chunk_entries;
     std::vector<std::uint64_t> rows_;
     // Raw storage with its own capacity: std::vector::resize would zero every entry on
     // growth (wasted writes) and grows by doubling (wasted memory).
