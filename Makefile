@@ -33,7 +33,7 @@ demo: build
 # ctest runs tests side by side, each with OpenMP threads: passive waiting keeps idle
 # threads from spinning on cores another test needs (10x slower on 2 busy cores).
 test: build
-	cd $(BUILD) && OMP_WAIT_POLICY=passive ctest --output-on-failure -j $(JOBS) -LE validation
+	cd $(BUILD) && OMP_WAIT_POLICY=passive ctest --output-on-failure -j $(JOBS) -LE "validation|gpu"
 
 validation: build
 	cd $(BUILD) && OMP_WAIT_POLICY=passive ctest --output-on-failure -j $(JOBS) -L validation

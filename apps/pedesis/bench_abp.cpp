@@ -2,6 +2,8 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
+#include "pedesis/gpu/gpu_stepper.hpp"
+#include "pedesis/setup/lattice.hpp"
 #include "pedesis/soft/brownian.hpp"
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/pair_force.hpp"
@@ -9,6 +11,7 @@
 #include "pedesis/soft/polar_align.hpp"
 #include "pedesis/soft/self_propulsion.hpp"
 #include "pedesis/soft/spatial_sort.hpp"
+#include "pedesis/soft/velocity_verlet.hpp"
 
 #include <fmt/core.h>
 #include <omp.h>
@@ -39,6 +42,8 @@ struct BenchAbpOptions {
     // 1.0 to 1.5 the rate is flat, and 1.0 keeps the list smallest.
     double skin = 1.0;
     std::uint64_t sort_interval = 200;
+    std::string device = "cpu";
+    std::string model = "abp"; // or "lj": in.lj's Lennard-Jones liquid
 };
 
 // The ABP tutorial's model (Session 2), scaled to N particles at its number density.
@@ -166,6 +171,102 @@ template <int D> void build_system(SoftState<D>& s, const BenchAbpOptions& o, do
     s.apply_order(space_filling_order(s.box, s.p.position, s.p.tag, a_harmonic + o.skin));
 }
 
+// LAMMPS' bench/in.lj: fcc at reduced density 0.8442, LJ cut at 2.5 (not shifted), skin
+// 0.3, NVE with dt 0.005, velocities at T = 1.44 with zero total momentum; N is rounded to
+// 4 m^3.
+constexpr double lj_density = 0.8442, lj_temperature = 1.44, lj_dt = 0.005, lj_skin = 0.3;
+
+std::size_t lj_cells(std::size_t n) {
+    return static_cast<std::size_t>(std::llround(std::cbrt(static_cast<double>(n) / 4.0)));
+}
+
+void build_lj(SoftState<3>& s, std::size_t n, std::uint64_t seed) {
+    const std::size_t m = std::max<std::size_t>(lj_cells(n), 1);
+    const double L = static_cast<double>(m) * std::cbrt(4.0 / lj_density);
+    s.box = Box<3>(Vec<3>::filled(L), {true, true, true});
+    const std::size_t count = 4 * m * m * m;
+    s.resize(count);
+    s.p.species_table = {Species{"A", 0.5, 1.0}};
+    const auto sites = lattice_sites<3>(LatticeKind::fcc, Vec<3>::filled(-0.5 * L),
+                                        Vec<3>::filled(0.5 * L), {false, false, false}, count);
+    Vec<3> mean{};
+    for (std::size_t i = 0; i < count; ++i) {
+        s.p.position[i] = sites[i];
+        s.p.tag[i] = static_cast<std::uint32_t>(i);
+        s.director[i] = Vec<3>{{1.0, 0.0, 0.0}};
+        CounterRng rng(seed, RngStream::velocity, static_cast<std::uint32_t>(i));
+        for (int a = 0; a < 3; ++a) s.p.velocity[i][a] = std::sqrt(lj_temperature) * rng.normal();
+        mean += s.p.velocity[i];
+    }
+    mean *= 1.0 / static_cast<double>(count);
+    for (auto& v : s.p.velocity) v -= mean;
+    s.apply_order(space_filling_order(s.box, s.p.position, s.p.tag, 2.5 + lj_skin));
+}
+
+// What both models print: rate, list, memory and a checksum of the final state.
+template <int D>
+void time_and_report(SoftState<D>& s, Evolver<D>& e, const BenchAbpOptions& o, double step_dt) {
+    e.run(o.warmup, step_dt);
+    const std::uint64_t builds0 = e.list_builds();
+    const double cpu0 = cpu_seconds();
+    const auto t0 = std::chrono::steady_clock::now();
+    e.run(o.steps, step_dt);
+    const auto t1 = std::chrono::steady_clock::now();
+    const double cpu = cpu_seconds() - cpu0;
+    const double seconds = std::chrono::duration<double>(t1 - t0).count();
+    const std::uint64_t builds = e.list_builds() - builds0;
+    e.sync_host();
+
+    const std::size_t n = s.size();
+    const double nd = static_cast<double>(n);
+    const double particle_steps = nd * static_cast<double>(o.steps);
+    fmt::print("wall_seconds: {:.3f}  seconds_per_step: {:.4g}  cpu_seconds: {:.3f} "
+               "(cpu_particle_steps_per_second: {:.0f})\n",
+               seconds, seconds / static_cast<double>(o.steps), cpu, particle_steps / cpu);
+    const double every = builds ? static_cast<double>(o.steps) / static_cast<double>(builds)
+                                : std::numeric_limits<double>::infinity();
+    const double state = static_cast<double>(state_bytes(s));
+    double list = 0.0;
+    if (const auto* device = e.device()) {
+        fmt::print("list_builds: {} (one every {:.1f} steps, each a sort along the curve)\n",
+                   builds, every);
+        fmt::print("device: {}\n", device->description());
+        fmt::print("device_bytes_per_particle: {:.1f}  max_rss_bytes_per_particle: {:.1f}\n",
+                   static_cast<double>(device->device_bytes()) / nd, max_rss_bytes() / nd);
+    } else {
+        const auto& nl = e.neighbor_list();
+        list = static_cast<double>(nl.memory_bytes());
+        fmt::print("list_builds: {} (one every {:.1f} steps; space-filling-curve sorts included)  "
+                   "list_entries_per_particle: {:.2f} (each pair once)\n",
+                   builds, every, static_cast<double>(nl.entries()) / nd);
+        fmt::print("state_bytes_per_particle: {:.1f}  neighbour_list_bytes_per_particle: {:.1f}  "
+                   "max_rss_bytes_per_particle: {:.1f}\n",
+                   state / nd, list / nd, max_rss_bytes() / nd);
+    }
+    fmt::print("state_checksum: {:016x}\n", state_checksum(s));
+    fmt::print("particle_steps_per_second: {:.0f}\n", particle_steps / seconds);
+    if (!e.device()) fmt::print("bytes_per_particle: {:.1f}\n", (state + list) / nd);
+}
+
+void run_lj(const BenchAbpOptions& o) {
+    if (o.steps < 1) throw InputError("bench abp: --steps must be at least 1");
+    if (lj_cells(o.n) < 3) throw InputError("bench abp --model lj: --n must be at least 108");
+    omp_set_num_threads(o.threads);
+    SoftState<3> s;
+    build_lj(s, o.n, o.seed);
+    Evolver<3> e(s, lj_skin);
+    e.add_force(std::make_unique<PairForce<3, LjPair>>("lj", LjPair{1.0, 1.0, 2.5, false}));
+    e.add_integrator(std::make_unique<VelocityVerletIntegrator<3>>());
+    e.set_sort_interval(o.sort_interval);
+    if (o.device == "gpu") e.set_device(make_gpu_stepper<3>(s, e, {}));
+    fmt::print("bench abp --model lj: dim 3 N {} density {} L {:.4f} threads {} device {}\n",
+               s.size(), lj_density, s.box.length(0), o.threads, o.device);
+    fmt::print("model: in.lj (LJ epsilon 1 sigma 1 cut 2.5, fcc start, T0 {}), nve, dt {}, skin "
+               "{}, steps {} (after {} warm-up) seed {}\n",
+               lj_temperature, lj_dt, lj_skin, o.steps, o.warmup, o.seed);
+    time_and_report(s, e, o, lj_dt);
+}
+
 template <int D> void run_bench(const BenchAbpOptions& o) {
     if (o.n < 2) throw InputError("bench abp: --n must be at least 2");
     if (o.n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
@@ -196,9 +297,10 @@ template <int D> void run_bench(const BenchAbpOptions& o) {
     e.add_integrator(
         std::make_unique<BrownianRotationIntegrator<D>>(temperature, gamma_friction, o.seed));
     e.set_sort_interval(o.sort_interval);
+    if (o.device == "gpu") e.set_device(make_gpu_stepper<D>(s, e, {}));
 
-    fmt::print("bench abp: dim {} N {} density {} L {:.4f} threads {}\n", D, o.n, density, L,
-               o.threads);
+    fmt::print("bench abp: dim {} N {} density {} L {:.4f} threads {} device {}\n", D, o.n, density,
+               L, o.threads, o.device);
     fmt::print("model: harmonic k {} a {}, self-propulsion alpha {}, T {} (positions and "
                "rotations), gamma {}, dt {}, alignment {}\n",
                k_harmonic, a_harmonic, alpha, temperature, gamma_friction, dt,
@@ -206,36 +308,7 @@ template <int D> void run_bench(const BenchAbpOptions& o) {
     fmt::print("skin {} sort_interval {} steps {} (after {} warm-up) seed {}\n", o.skin,
                o.sort_interval, o.steps, o.warmup, o.seed);
 
-    e.run(o.warmup, dt);
-    const std::uint64_t builds0 = e.list_builds();
-    const double cpu0 = cpu_seconds();
-    const auto t0 = std::chrono::steady_clock::now();
-    e.run(o.steps, dt);
-    const auto t1 = std::chrono::steady_clock::now();
-    const double cpu = cpu_seconds() - cpu0;
-    const double seconds = std::chrono::duration<double>(t1 - t0).count();
-    const std::uint64_t builds = e.list_builds() - builds0;
-
-    const auto& nl = e.neighbor_list();
-    const double nd = static_cast<double>(o.n);
-    const double particle_steps = nd * static_cast<double>(o.steps);
-    fmt::print("wall_seconds: {:.3f}  seconds_per_step: {:.4g}  cpu_seconds: {:.3f} "
-               "(cpu_particle_steps_per_second: {:.0f})\n",
-               seconds, seconds / static_cast<double>(o.steps), cpu, particle_steps / cpu);
-    fmt::print("list_builds: {} (one every {:.1f} steps; space-filling-curve sorts included)  "
-               "list_entries_per_particle: {:.2f} (each pair once)\n",
-               builds,
-               builds ? static_cast<double>(o.steps) / static_cast<double>(builds)
-                      : std::numeric_limits<double>::infinity(),
-               static_cast<double>(nl.entries()) / nd);
-    const double state = static_cast<double>(state_bytes(s));
-    const double list = static_cast<double>(nl.memory_bytes());
-    fmt::print("state_bytes_per_particle: {:.1f}  neighbour_list_bytes_per_particle: {:.1f}  "
-               "max_rss_bytes_per_particle: {:.1f}\n",
-               state / nd, list / nd, max_rss_bytes() / nd);
-    fmt::print("state_checksum: {:016x}\n", state_checksum(s));
-    fmt::print("particle_steps_per_second: {:.0f}\n", particle_steps / seconds);
-    fmt::print("bytes_per_particle: {:.1f}\n", (state + list) / nd);
+    time_and_report(s, e, o, dt);
 }
 
 } // namespace
@@ -254,8 +327,16 @@ void add_bench_abp(CLI::App& bench) {
     cmd->add_option("--skin", o->skin, "Neighbour-list skin");
     cmd->add_option("--sort-interval", o->sort_interval,
                     "Steps between space-filling-curve sorts (0: never)");
+    cmd->add_option("--device", o->device, "Where to step: cpu or gpu (docs/gpu.md)")
+        ->check(CLI::IsMember({"cpu", "gpu"}));
+    cmd->add_option("--model", o->model,
+                    "abp: the tutorial's active Brownian particles; lj: LAMMPS' in.lj liquid "
+                    "(3D, N rounded to 4 m^3)")
+        ->check(CLI::IsMember({"abp", "lj"}));
     cmd->callback([o] {
-        if (o->dim == 2)
+        if (o->model == "lj")
+            run_lj(*o);
+        else if (o->dim == 2)
             run_bench<2>(*o);
         else
             run_bench<3>(*o);

@@ -6,13 +6,16 @@
 #include "bench_stepped.hpp"
 #include "init_command.hpp"
 #include "mpi_world.hpp"
-#include "render_command.hpp"
 #include "run_command.hpp"
 #include "sweep_command.hpp"
 #include "validate_command.hpp"
-#include "view_command.hpp"
 
 #include "pedesis/core/error.hpp"
+
+#if PEDESIS_HAVE_GRAPHICS
+#include "render_command.hpp"
+#include "view_command.hpp"
+#endif
 
 #include <pedesis_version.hpp>
 
@@ -30,8 +33,10 @@ int main(int argc, char** argv) {
     pedesis::cli::add_sweep_command(app);
     pedesis::cli::add_init_command(app);
     pedesis::cli::add_analyze_command(app);
+#if PEDESIS_HAVE_GRAPHICS // (a build for a bare GPU machine leaves them out: scripts/gpu_check.sh)
     pedesis::cli::add_render_command(app);
     pedesis::cli::add_view_command(app);
+#endif
     pedesis::cli::add_validate_command(app);
     auto* bench =
         app.add_subcommand("bench", "Benchmark programs (print figures, never fail on speed)");

@@ -8,7 +8,9 @@
 #include "pedesis/run/run.hpp"
 #include "pedesis/run/steering.hpp"
 #include "pedesis/setup/run_config.hpp"
+#if PEDESIS_HAVE_GRAPHICS
 #include "pedesis/view/view_server.hpp"
+#endif
 #include "thread_choice.hpp"
 
 #include <fmt/format.h>
@@ -31,20 +33,22 @@ struct RunArgs {
     std::string out;
     std::string restart;
     bool list_quantities = false;
-    int threads = 0; // 0: choose (thread_choice.hpp)
+    int threads = 0;    // 0: choose (thread_choice.hpp)
+    std::string device; // empty: the config's [run] device
     bool view = false;
     int view_port = 8765;
     std::string steering; // a record to replay
 };
 
 // 128 random bits, in hex: the token a page must show to change a run.
-std::string random_token() {
+[[maybe_unused]] std::string random_token() {
     std::random_device device;
     std::string token;
     for (int k = 0; k < 4; ++k) token += fmt::format("{:08x}", device());
     return token;
 }
 
+#if PEDESIS_HAVE_GRAPHICS
 // `pedesis run --view`: the viewer's server on the run directory, serving for as long as
 // this lives, with the token that lets its page change the run.
 class LiveView {
@@ -70,6 +74,16 @@ class LiveView {
     std::string token_;
     std::unique_ptr<view::ViewServer> server_;
 };
+#else
+// A build without the viewer (PEDESIS_GRAPHICS off) refuses --view.
+class LiveView {
+  public:
+    LiveView(const std::filesystem::path&, int, SteeringDesk*) {
+        throw InputError("--view: this pedesis was built without the viewer (PEDESIS_GRAPHICS)");
+    }
+    std::string url() const { return {}; }
+};
+#endif
 
 // One line per quantity: name, unit, engines, meaning.
 void print_quantities(std::ostream& out) {
@@ -95,6 +109,10 @@ void add_run_command(CLI::App& app) {
                     "the same for any number")
         ->check(CLI::Range(1, 1024));
     cmd->add_option("--out", a->out, "Run directory (default: runs/<config name>)");
+    cmd->add_option("--device", a->device,
+                    "Where a soft-engine run steps: cpu or gpu (default: the config's [run] "
+                    "device, else cpu; docs/gpu.md)")
+        ->check(CLI::IsMember({"cpu", "gpu"}));
     cmd->add_option("--restart", a->restart,
                     "Continue exactly from a checkpoint.bin of an earlier run");
     cmd->add_flag("--view", a->view,
@@ -127,6 +145,7 @@ void add_run_command(CLI::App& app) {
                         ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
                         : std::filesystem::path(a->out);
         if (!a->restart.empty()) o.restart = a->restart;
+        if (!a->device.empty()) o.device = a->device;
         // only process 0 talks; every process of an MPI run takes one thread unless told
         // otherwise (P processes of idle-core threads each would oversubscribe the cores)
         std::ostringstream unheard;

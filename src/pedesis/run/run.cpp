@@ -16,6 +16,11 @@ namespace {
 template <int D>
 EngineSetup<D> engine_setup(const RunConfig& c, const RunOptions& o, std::ostream& out) {
     if (c.soft()) return soft_engine_setup<D>(c, o, out);
+    if (o.device && *o.device == "gpu")
+        throw InputError(c.file +
+                         ": only the soft engines (brownian, langevin, nve) run on the "
+                         "GPU, and this config's dynamics is '" +
+                         c.dynamics + "'");
     if (c.dynamics == "stepped") return stepped_engine_setup<D>(c, o, out);
     return event_engine_setup<D>(c, o, out);
 }

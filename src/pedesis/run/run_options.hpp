@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 namespace pedesis {
 
@@ -14,6 +15,9 @@ struct RunOptions {
     // The processes one soft-engine run is divided among (null: this one alone). Only
     // process 0 writes the run directory and prints; the others compute.
     Communicator* comm = nullptr;
+    // `--device`: where a soft-engine run steps ("cpu" or "gpu"), over the config's
+    // [run] device.
+    std::optional<std::string> device;
 };
 
 } // namespace pedesis

@@ -1,6 +1,7 @@
 #include "pedesis/run/soft_run.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/gpu/gpu_stepper.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/observe/soft_observables.hpp"
 #include "pedesis/observe/thermo.hpp"
@@ -82,10 +83,19 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             domain_->scatter(state_);
             evolver_->set_domain(domain_.get());
         }
-        // built here so that a box too small for the cutoff is reported before any output
-        // exists; a restored run has its list already (building now could rebuild it at
-        // another point of the step than the continuous run did)
-        if (!o_.restart || domain_) evolver_->neighbor_list();
+        if (on_gpu()) {
+            if (domain_)
+                throw InputError(c_.file + ": device = \"gpu\" runs on one process; start it "
+                                           "without mpirun");
+            // a restored run's list reference makes the device's first list the same
+            evolver_->set_device(
+                make_gpu_stepper<D>(state_, *evolver_, evolver_->list_reference()));
+        } else if (!o_.restart || domain_) {
+            // built here so that a box too small for the cutoff is reported before any
+            // output exists; a restored run has its list already (building now could
+            // rebuild it at another point of the step than the continuous run did)
+            evolver_->neighbor_list();
+        }
     }
 
     Schedule schedule() const {
@@ -137,6 +147,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     void measure(std::vector<double>& values) override {
         const PairTotals pair = evolver_->pair_totals(); // (collective under a decomposition)
+        evolver_->sync_host();
         const Measured m = domain_ ? measured_shared() : measured_here();
         const double V = state_.box.volume();
         const double virial = pair.virial / (D * V);
@@ -168,6 +179,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                 grid += fmt::format("{}{}", a ? " x " : "", domain_->grid()[a]);
             console_ << fmt::format("  {} MPI processes, domains {}\n", o_.comm->size(), grid);
         }
+        if (const auto* device = evolver_->device())
+            console_ << fmt::format("  on the GPU: {}\n", device->description());
         if (fresh) evolver_->compute_forces(); // so that frame 0 shows them; the step reuses them
         whole_current_ = false;
         wall_start_ = std::chrono::steady_clock::now();
@@ -201,6 +214,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         if (!writer()) return j;
         j["dimension"] = D;
         j["dynamics"] = c_.dynamics;
+        j["device"] = on_gpu() ? "gpu" : "cpu";
         j["particles"] = particles_;
         j["steps"] = state_.step;
         j["time"] = state_.time;
@@ -384,6 +398,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     }
 
     bool inertial() const { return overdamped_ == nullptr; }
+    bool on_gpu() const { return o_.device.value_or(c_.device) == "gpu"; }
 
     // Whether this process writes and prints (process 0, or the only one).
     bool writer() const { return !domain_ || o_.comm->rank() == 0; }
@@ -391,7 +406,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     // The whole state in tag order: this process's own on one process; under a domain
     // decomposition gathered on process 0 once per state (collective).
     const SoftState<D>& whole() {
-        if (!domain_) return state_;
+        if (!domain_) {
+            evolver_->sync_host();
+            return state_;
+        }
         if (!whole_current_) {
             domain_->gather(state_, whole_);
             if (writer() && whole_.size() != particles_)

@@ -356,6 +356,12 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
     if (!run->has("steps")) throw InputError(run->where("steps") + ": is required");
     c.dt = run->required_number("dt");
     if (!(c.dt > 0)) throw InputError(run->where("dt") + ": must be positive");
+    if (auto device = run->string("device")) {
+        if (*device != "cpu" && *device != "gpu")
+            throw InputError(run->where("device") + ": must be \"cpu\" or \"gpu\", not \"" +
+                             *device + "\"");
+        c.device = *device;
+    }
     run->finish();
 
     c.formats = {"vtp", "gsd"};

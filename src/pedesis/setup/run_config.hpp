@@ -84,6 +84,7 @@ struct RunConfig {
     double list_r_cut = 0.0; // 0: the largest interaction range
     double list_skin = 0.5;
     std::uint64_t sort_every = 500; // steps between space-filling-curve sorts (0: never)
+    std::string device = "cpu";     // soft engines: "cpu" or "gpu" (gpu/gpu_stepper.hpp)
     std::uint64_t steps = 0;
     double dt = 0.0; // also the time step of the stepped engine
     std::uint64_t log_every = 100;

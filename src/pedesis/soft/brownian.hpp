@@ -62,6 +62,7 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
     }
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }
+    std::uint64_t seed() const { return seed_; }
     // From the next step on (the coefficients are made from T every step).
     void set_temperature(PerSpecies T) {
         detail::check_overdamped(T, gamma_, "brownian");
@@ -121,6 +122,9 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
     double rotational_diffusion(std::size_t s = 0, std::size_t n = 1) const {
         return T_.at(s, n) / gamma_.at(s, n);
     }
+    const PerSpecies& temperature() const { return T_; }
+    const PerSpecies& gamma() const { return gamma_; }
+    std::uint64_t seed() const { return seed_; }
 
     void poststep(SoftState<D>& s, double dt, double) override {
         c_.update(T_, gamma_, s.p.species_table.size(), dt);

@@ -85,6 +85,7 @@ template <int D> const NeighborList<D>& Evolver<D>::neighbor_list() {
 }
 
 template <int D> std::vector<Vec<D>> Evolver<D>::list_reference() const {
+    if (device_) return device_->list_reference();
     // (a shared run's list holds one process's particles: a restart rebuilds)
     return nl_ && !domain_ ? nl_->build_positions() : std::vector<Vec<D>>{};
 }
@@ -140,6 +141,12 @@ template <int D> bool Evolver<D>::needs_initial_forces() const {
 }
 
 template <int D> void Evolver<D>::compute_forces() {
+    if (device_) {
+        builds_ += device_->compute_forces();
+        host_current_ = false;
+        forces_current_ = true;
+        return;
+    }
     ensure_list();
     // in parallel like every per-particle loop of a step: serial, it would cap the speed-up
     // with threads
@@ -160,6 +167,14 @@ template <int D> void Evolver<D>::evolve(double dt) {
         evolve_shared(dt);
         return;
     }
+    if (device_) {
+        if (!forces_current_ && needs_initial_forces()) compute_forces();
+        host_current_ = false;
+        builds_ += device_->step(dt, skin_ > 0.0 ? skin_ : r_list_cut_);
+        ++s_.step;
+        s_.time += dt;
+        return;
+    }
     if (!nl_) ensure_list();
     if (sort_interval_ > 0 && s_.step > 0 && s_.step % sort_interval_ == 0) sort_particles();
     if (!forces_current_ && needs_initial_forces()) compute_forces();
@@ -173,6 +188,20 @@ template <int D> void Evolver<D>::evolve(double dt) {
     wrap_all();
     ++s_.step;
     s_.time += dt;
+}
+
+template <int D> void Evolver<D>::set_device(std::unique_ptr<DeviceStepper<D>> device) {
+    if (domain_) throw InputError("device = \"gpu\" runs on one process (not under mpirun)");
+    if (!nl_) make_list(); // the cutoff and skin the device's list uses
+    device_ = std::move(device);
+    host_current_ = true;
+}
+
+template <int D> void Evolver<D>::sync_host() {
+    if (device_ && !host_current_) {
+        device_->download();
+        host_current_ = true;
+    }
 }
 
 template <int D> void Evolver<D>::set_domain(DomainDecomposition<D>* domain) {
@@ -237,6 +266,7 @@ template <int D> bool Evolver<D>::interrupted() const {
 }
 
 template <int D> PairTotals Evolver<D>::pair_totals() {
+    if (device_) return device_->pair_totals();
     if (!nl_) ensure_list();
     PairTotals t;
     if (domain_) {

@@ -3,6 +3,7 @@
 // and advances the state one step at a time:
 //   neighbour-list check, integrator pre-steps, forces and torques (reset, then every
 //   term), integrator post-steps, periodic wrap with image counters.
+#include "pedesis/soft/device_stepper.hpp"
 #include "pedesis/soft/domain_decomposition.hpp"
 #include "pedesis/soft/plugins.hpp"
 
@@ -31,6 +32,14 @@ template <int D> class Evolver {
     // evolver. The periodic sort then sorts each process's particles, at a shared
     // redistribution.
     void set_domain(DomainDecomposition<D>* domain);
+    // Hands every step, force computation and total to a device (gpu/gpu_stepper.hpp),
+    // which holds the state from now on: the host arrays are a copy that sync_host()
+    // brings up to date, and the periodic sort is the device's own. Not with a domain
+    // decomposition.
+    void set_device(std::unique_ptr<DeviceStepper<D>> device);
+    const DeviceStepper<D>* device() const { return device_.get(); }
+    // Brings the state's host arrays up to date with the device (nothing without one).
+    void sync_host();
     // Whether a caught signal (core/interrupt.hpp) asks the run to stop: under a domain
     // decomposition, whether one reached any process by the end of the last step, so
     // that all stop at the same step.
@@ -103,6 +112,8 @@ template <int D> class Evolver {
     std::uint64_t sort_interval_ = 0;
     bool forces_current_ = false;
     DomainDecomposition<D>* domain_ = nullptr;
+    std::unique_ptr<DeviceStepper<D>> device_;
+    bool host_current_ = true; // the host arrays hold the device's state
     bool interrupted_ = false; // collective, under a domain decomposition
     bool rebuild_for_totals_ = false;
     std::vector<Vec<D>> local_; // positions in the frame of the domain's list

@@ -82,6 +82,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
     bool needs_initial_forces() const override { return true; }
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }
+    std::uint64_t seed() const { return seed_; }
     // From the next step on (the coefficients are made from T every step).
     void set_temperature(PerSpecies T) {
         for (double t : T.values())

@@ -5,14 +5,19 @@
 // branch, for pairs already known to lie in range (the pair loop's vectorisable part). The pair
 // loop (pair_force.hpp) is written once for all of them; adding a potential is one struct here and
 // one line in the registry.
+#include "pedesis/core/host_device.hpp"
+
 #include <cmath>
 
 namespace pedesis {
 
+// The evaluators are shared with the CUDA kernels (src/pedesis/gpu/): what a kernel calls
+// is PEDESIS_HD, and the header stays C++17.
+
 // Lennard-Jones F/r = 24 eps (2 (s/r)^12 - (s/r)^6) / r^2, shared by wca and lj. One
 // division per pair (1/r^2, then products): divisions are the slowest operation of the
 // pair loop.
-inline double lj_force_over_r(double epsilon, double s, double r2) {
+PEDESIS_HD inline double lj_force_over_r(double epsilon, double s, double r2) {
     const double inv_r2 = 1.0 / r2;
     const double x2 = s * s * inv_r2;
     const double x6 = x2 * x2 * x2;
@@ -25,15 +30,15 @@ struct HarmonicPair {
     double k = 10.0;
     double a = -1.0;
 
-    bool operator==(const HarmonicPair&) const = default;
-    double range(double rsum) const { return a > 0.0 ? a : rsum; }
+    bool operator==(const HarmonicPair& o) const { return k == o.k && a == o.a; }
+    PEDESIS_HD double range(double rsum) const { return a > 0.0 ? a : rsum; }
     double max_range(double max_rsum) const { return range(max_rsum); }
     // F/r for a pair inside the range (the pair loop filters by range first)
-    double force_over_r(double r2, double rsum) const {
+    PEDESIS_HD double force_over_r(double r2, double rsum) const {
         const double r = std::sqrt(r2);
         return k * (range(rsum) - r) / r;
     }
-    bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
+    PEDESIS_HD bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
         const double R = range(rsum);
         if (r2 >= R * R) return false;
         const double overlap = R - std::sqrt(r2);
@@ -49,13 +54,13 @@ struct WcaPair {
     double epsilon = 1.0;
     double sigma = -1.0;
 
-    bool operator==(const WcaPair&) const = default;
-    double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
+    bool operator==(const WcaPair& o) const { return epsilon == o.epsilon && sigma == o.sigma; }
+    PEDESIS_HD double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return std::pow(2.0, 1.0 / 6.0) * sig(max_rsum); }
-    double force_over_r(double r2, double rsum) const {
+    PEDESIS_HD double force_over_r(double r2, double rsum) const {
         return lj_force_over_r(epsilon, sig(rsum), r2);
     }
-    bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
+    PEDESIS_HD bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
         const double s = sig(rsum);
         const double s2 = s * s;
         if (r2 >= std::pow(2.0, 1.0 / 3.0) * s2) return false;
@@ -78,13 +83,15 @@ struct LjPair {
     double cutoff = 2.5;
     bool shift = false;
 
-    bool operator==(const LjPair&) const = default;
-    double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
+    bool operator==(const LjPair& o) const {
+        return epsilon == o.epsilon && sigma == o.sigma && cutoff == o.cutoff && shift == o.shift;
+    }
+    PEDESIS_HD double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return cutoff * sig(max_rsum); }
-    double force_over_r(double r2, double rsum) const {
+    PEDESIS_HD double force_over_r(double r2, double rsum) const {
         return lj_force_over_r(epsilon, sig(rsum), r2);
     }
-    bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
+    PEDESIS_HD bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
         const double s = sig(rsum);
         const double s2 = s * s;
         if (r2 >= cutoff * cutoff * s2) return false;

@@ -55,17 +55,21 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         for (std::int64_t i = 0; i < n; ++i) vel[i] += kick[sp[i]] * force[i];
     }
 
-  private:
     // Per species: half kick dt/(2m), and drift dt, zero for an infinite mass so that an
     // obstacle stays put even if it was given a velocity.
-    void tabulate(const SoftState<D>& s, double dt) {
-        const auto& table = s.p.species_table;
-        kick_.resize(table.size());
-        drift_.resize(table.size());
+    static void tabulate(const std::vector<Species>& table, double dt, std::vector<double>& kick,
+                         std::vector<double>& drift) {
+        kick.resize(table.size());
+        drift.resize(table.size());
         for (std::size_t k = 0; k < table.size(); ++k) {
-            kick_[k] = 0.5 * dt * table[k].inverse_mass();
-            drift_[k] = std::isinf(table[k].mass) ? 0.0 : dt;
+            kick[k] = 0.5 * dt * table[k].inverse_mass();
+            drift[k] = std::isinf(table[k].mass) ? 0.0 : dt;
         }
+    }
+
+  private:
+    void tabulate(const SoftState<D>& s, double dt) {
+        tabulate(s.p.species_table, dt, kick_, drift_);
     }
 
     std::vector<double> kick_, drift_;
