@@ -34,18 +34,19 @@ generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 zlib=$deps/usr/lib/x86_64-linux-gnu/libz.so
 [ -e "$zlib" ] || zlib=$deps/lib/x86_64-linux-gnu/libz.so.1
+mkdir -p "$build"
 cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
   -DPEDESIS_CUDA=ON -DPEDESIS_CUDA_ARCHITECTURES="${CUDA_ARCHITECTURES:-90}" \
   -DPEDESIS_GRAPHICS=OFF -DPEDESIS_PYTHON_MODULE=OFF -DPEDESIS_MPI=OFF \
   -DCMAKE_PREFIX_PATH="$deps/usr" -DRANDOM123_INCLUDE_DIR="$deps/usr/include" \
   -DZLIB_INCLUDE_DIR="$deps/usr/include" -DZLIB_LIBRARY="$zlib" \
   -DGTEST_ROOT="$deps/usr" -DCMAKE_BUILD_RPATH="$deps/usr/lib/x86_64-linux-gnu;$deps/lib/x86_64-linux-gnu" \
-  >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
-grep "pedesis:" "$build.configure.log"
+  >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
+grep "pedesis:" "$build/configure.log"
 
 stage "build"
 cmake --build "$build" -j "$(nproc)" --target pedesis gpu_engine_test gpu_host_test cli_device_test \
-  >"$build.build.log" 2>&1 || { tail -60 "$build.build.log"; exit 1; }
+  >"$build/build.log" 2>&1 || { tail -60 "$build/build.log"; exit 1; }
 echo "built"
 
 stage "tests (label gpu, and the host side)"
