@@ -876,7 +876,7 @@ void DeviceSystem::set_coefficients(const StepCoefficients& c) {
 
 StepStatus DeviceSystem::prestep(std::uint32_t step) {
     Impl& s = *impl_;
-    if (s.m.mover != Mover::langevin && s.m.mover != Mover::nve) return {};
+    if (s.n == 0 || (s.m.mover != Mover::langevin && s.m.mover != Mover::nve)) return {};
     if (!s.has_list) s.build(false); // the reference the moves are measured from
     s.reset_status();
     const StepArgs a = s.args(step);
