@@ -262,6 +262,9 @@ template <int D> void check_lattices_at_multiples_of_the_range(const std::vector
                         pos.push_back(tip);
                         const double r_list = per_range * a;
                         if (L < 2.0 * r_list) continue;
+                        // below 4096 particles the build runs serially whatever the thread
+                        // count: a second thread would repeat the same case
+                        if (threads > 1 && pos.size() < 4096) continue;
                         const double r_cut = r_list / (1.0 + skin_fraction);
                         std::array<bool, D> periodic;
                         periodic.fill(true);
