@@ -955,12 +955,4 @@ std::size_t DeviceSystem::device_bytes() const {
            s.sort_temp.bytes() + s.energy.bytes() + s.virial.bytes() + s.rank.bytes();
 }
 
-std::size_t DeviceSystem::neighbour_capacity() const {
-    return impl_->capacity;
-}
-
-void DeviceSystem::synchronize() const {
-    check(cudaDeviceSynchronize(), "synchronize");
-}
-
 } // namespace pedesis::gpu

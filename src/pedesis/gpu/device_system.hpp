@@ -71,9 +71,6 @@ class DeviceSystem {
     Totals totals();
 
     std::size_t device_bytes() const;
-    std::size_t neighbour_capacity() const;
-    // Waits for the device (benchmarks time whole steps).
-    void synchronize() const;
 
   private:
     struct Impl;

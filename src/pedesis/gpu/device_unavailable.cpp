@@ -43,9 +43,5 @@ Totals DeviceSystem::totals() {
 std::size_t DeviceSystem::device_bytes() const {
     return 0;
 }
-std::size_t DeviceSystem::neighbour_capacity() const {
-    return 0;
-}
-void DeviceSystem::synchronize() const {}
 
 } // namespace pedesis::gpu
