@@ -24,6 +24,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 
 int main(int argc, char** argv) {
     CLI::App app{"pedesis: particle dynamics of gases and active matter"};
@@ -60,6 +61,11 @@ int main(int argc, char** argv) {
         // a run divided among MPI processes stops on all with process 0's message
         if (pedesis::cli::rank_for_messages() == 0)
             fmt::print(stderr, "pedesis: run stopped: {}\n", e.what());
+        return pedesis::exit_run_error;
+    } catch (const std::logic_error& e) {
+        // a broken invariant (a bounded loop gone past its bound, named in the message):
+        // the run cannot go on, as with a RunError
+        fmt::print(stderr, "pedesis: internal error: {}\n", e.what());
         return pedesis::exit_run_error;
     } catch (const std::exception& e) {
         fmt::print(stderr, "pedesis: internal error: {}\n", e.what());

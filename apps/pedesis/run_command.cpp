@@ -16,14 +16,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <memory>
 #include <random>
 #include <sstream>
-#include <thread>
+#include <unistd.h>
 
 namespace pedesis::cli {
 
@@ -156,9 +155,9 @@ void add_run_command(CLI::App& app) {
         else if (comm && !std::getenv("OMP_NUM_THREADS"))
             threads = 1;
         choose_threads(threads, console);
-        InterruptGuard guard;
+        // a signal during set-up ends the process at once (nothing there to close)
+        InterruptGuard guard(OutsideCleanStops::end_process);
         const std::unique_ptr<Run> run = make_run(config, o, console);
-        if (guard.signal() != 0) guard.reraise(); // nothing is written yet
         // Changes from the page (--view) and from a record (--steering) go through one
         // desk, applied between steps and recorded in the run directory. Under MPI the
         // page only watches: a change reaching process 0 alone would split the run.
@@ -178,16 +177,21 @@ void add_run_command(CLI::App& app) {
                                               live_changes ? desk.get() : nullptr);
             console << fmt::format("pedesis: watch the run at {}\n", live->url()) << std::flush;
         }
-        if (desk) desk->replay_until_done();
-        run->run();
-        if (desk) desk->run_ended();
+        {
+            // from the first step to the steering record's close, a signal stops cleanly
+            const CleanStopWindow window;
+            if (desk) desk->replay_until_done();
+            run->run();
+            if (desk) desk->run_ended();
+        }
         if (live && guard.signal() == 0) {
             console << fmt::format("pedesis: the run is done; {} still shows it until Ctrl-C\n",
                                    live->url())
                     << std::flush;
-            while (!interrupt_requested())
-                std::this_thread::sleep_for(std::chrono::milliseconds(100));
-            return;
+            // Every file is closed, so a signal ends the process by its default action
+            // here (no clean stop to wait for, and no server close that a stuck client
+            // could hold up): pause() returns only to a handler, and ours does not return.
+            for (;;) ::pause();
         }
         if (guard.signal() != 0) {
             console << fmt::format(

@@ -93,7 +93,10 @@ void run_sweep(const SweepArgs& a) {
             shard.count > 1 ? fmt::format(", shard {}/{}", shard.index, shard.count) : "");
     std::cout.flush();
 
-    InterruptGuard guard;
+    // Between points and in their runs a signal stops the sweep cleanly (its table
+    // written); in the set-up of a point (make_run) it ends the process at once.
+    InterruptGuard guard(OutsideCleanStops::end_process);
+    const CleanStopWindow window;
     int failed = 0;
     for (const SweepPoint* p : mine) {
         if (point_done(*p)) {

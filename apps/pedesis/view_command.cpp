@@ -1,17 +1,15 @@
 #include "view_command.hpp"
 
-#include "pedesis/core/interrupt.hpp"
 #include "pedesis/view/export_page.hpp"
 #include "pedesis/view/view_server.hpp"
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <thread>
+#include <unistd.h>
 
 namespace pedesis::cli {
 
@@ -78,9 +76,10 @@ void add_view_command(CLI::App& app) {
             if (std::system(command.c_str()) != 0)
                 std::cerr << "pedesis view: could not start a browser; open the address above\n";
         }
-        InterruptGuard guard;
         server.start();
-        while (!interrupt_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        // Nothing here to close cleanly: SIGINT, SIGTERM and SIGHUP keep their default
+        // action and end the process at once, however busy the server is.
+        for (;;) ::pause();
     });
 }
 

@@ -9,7 +9,6 @@
 
 #include <chrono>
 #include <csignal>
-#include <fcntl.h>
 #include <thread>
 #include <unistd.h>
 
@@ -32,19 +31,9 @@ class Interrupt : public ScratchDir {
     Ended run_and_signal(const std::vector<std::string>& args, const std::string& out, int sig,
                          const std::string& command = "run") {
         const fs::path console = dir / ("console_" + std::to_string(++runs_) + ".txt");
-        const pid_t pid = fork();
-        if (pid == 0) {
-            if (chdir(dir.c_str()) != 0) _exit(120);
-            const int fd = open(console.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-            dup2(fd, 1);
-            dup2(fd, 2);
-            std::vector<char*> argv{const_cast<char*>(PEDESIS_BINARY),
-                                    const_cast<char*>(command.c_str())};
-            for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-            argv.push_back(nullptr);
-            execv(PEDESIS_BINARY, argv.data());
-            _exit(127);
-        }
+        std::vector<std::string> argv{command};
+        argv.insert(argv.end(), args.begin(), args.end());
+        const pid_t pid = start_pedesis(dir, console, argv);
         Ended e;
         const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
         auto has_output = [&] {

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -11,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 namespace pedesis::test {
@@ -40,6 +42,25 @@ inline CliResult run_pedesis(const std::string& args, const std::filesystem::pat
     const std::string limit =
         timeout_s > 0 ? "timeout -s KILL " + std::to_string(timeout_s) + " " : std::string();
     return shell(limit + "'" + PEDESIS_BINARY + "' " + args, cwd);
+}
+
+// Starts `pedesis ARGS...` in `cwd` without waiting, stdout and stderr into `console`,
+// with `env` ("NAME=value") added to its environment; the caller waits for the pid.
+inline pid_t start_pedesis(const std::filesystem::path& cwd, const std::filesystem::path& console,
+                           const std::vector<std::string>& args,
+                           const std::vector<std::string>& env = {}) {
+    const pid_t pid = fork();
+    if (pid != 0) return pid;
+    if (chdir(cwd.c_str()) != 0) _exit(120);
+    const int fd = open(console.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    for (const std::string& e : env) putenv(const_cast<char*>(e.c_str()));
+    std::vector<char*> argv{const_cast<char*>(PEDESIS_BINARY)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(PEDESIS_BINARY, argv.data());
+    _exit(127);
 }
 
 class ScratchDir : public ::testing::Test {

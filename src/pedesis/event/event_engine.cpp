@@ -3,6 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
 #include "pedesis/core/particle_checks.hpp"
+#include "pedesis/core/stage.hpp"
 #include "pedesis/event/collision_rules.hpp"
 #include "pedesis/event/prediction.hpp"
 #include "pedesis/io/binary_stream.hpp"
@@ -48,6 +49,7 @@ template <int D>
 EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
                             const EventParams& params)
     : p_(std::move(particles)), box_(box), params_(params) {
+    enter_stage("setting up the event engine");
     if (p_.size() == 0) throw InputError("event engine: no particles (N = 0)");
     validate(params_);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <stdexcept>
 
 namespace pedesis {
 
@@ -121,9 +122,16 @@ void EventQueue::unlink(std::uint32_t who) {
 
 // Moves to the next bucket that holds an event and sorts it into the heap.
 void EventQueue::advance() {
+    // A rebuild starts the calendar at the earliest event's bucket, so the one after it
+    // lists that event; a second rebuild in a row means the calendar cannot hold the times
+    // (an internal error, not a reason to go round again).
+    int rebuilds_in_a_row = 0;
     while (heap_.empty()) {
         if (listed_ == 0) {
             if (list_head_[slots_] == none) return; // nothing finite is pending
+            if (++rebuilds_in_a_row > 2)
+                throw std::logic_error("event calendar: rebuilt twice without listing the "
+                                       "earliest event (its time cannot be placed in a bucket)");
             // only far events are left: the width no longer fits the event rate
             rebuild();
             continue;

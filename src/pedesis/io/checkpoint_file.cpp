@@ -1,6 +1,7 @@
 #include "pedesis/io/checkpoint_file.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/stage.hpp"
 #include "pedesis/io/atomic_file.hpp"
 
 #include <fmt/format.h>
@@ -141,6 +142,7 @@ void CheckpointWriter::commit() {
 }
 
 CheckpointReader::CheckpointReader(const std::filesystem::path& path) : name_(path.string()) {
+    enter_stage("reading a checkpoint");
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw InputError(name_ + ": no such checkpoint file");

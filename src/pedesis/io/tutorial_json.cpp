@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/machine_memory.hpp"
+#include "pedesis/core/stage.hpp"
 
 #include <fmt/format.h>
 
@@ -271,6 +272,7 @@ template <int D> nlohmann::json to_tutorial_json(const Frame<D>& f) {
 }
 
 template <int D> ParticleFile<D> read_tutorial_json(const fs::path& path) {
+    enter_stage("reading a particle file");
     const std::string file = path.string();
     const json doc = parse_document(path);
     const Where top{file, ""};

@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
+#include "pedesis/core/stage.hpp"
 #include "pedesis/render/canvas.hpp"
 #include "pedesis/render/ffmpeg_encoder.hpp"
 #include "pedesis/render/layout.hpp"
@@ -117,6 +118,7 @@ void prepare_output(const fs::path& out, OutputKind kind) {
 }
 
 RenderReport render_frames(const RenderRequest& r, const InterruptGuard& guard) {
+    enter_stage("reading the frames");
     const OutputKind kind = output_kind(r.out);
     check_request(r, kind);
     const fs::path out = r.out;
@@ -143,6 +145,10 @@ RenderReport render_frames(const RenderRequest& r, const InterruptGuard& guard) 
     const bool sidebar = style.colour != ColourBy::species;
     const auto [width, height] = r.size ? *r.size : default_size(first, sidebar);
     Canvas canvas(width, height);
+    // From the first output on, a signal stops between frames and the encoder's temporary
+    // file goes; before it (reading the source, scaling speeds) it ends the process at once.
+    const CleanStopWindow window;
+    enter_stage("drawing the frames");
     prepare_output(out, kind);
     std::unique_ptr<FfmpegEncoder> encoder;
     if (kind != OutputKind::png_directory)
@@ -203,7 +209,7 @@ OutputKind output_kind(const std::string& out) {
 }
 
 RenderReport render(const RenderRequest& request) {
-    InterruptGuard guard;
+    InterruptGuard guard(OutsideCleanStops::end_process);
     try {
         return render_frames(request, guard);
     } catch (...) {

@@ -1,6 +1,7 @@
 #include "pedesis/run/run.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/gsd_writer.hpp"
 #include "pedesis/io/xyz_writer.hpp"
@@ -161,6 +162,8 @@ template <int D> class RunOf final : public Run {
 
 std::unique_ptr<Run> make_run(const RunConfig& config, const RunOptions& options,
                               std::ostream& console) {
+    // nothing of a run exists yet that a clean stop could close (core/interrupt.hpp)
+    const SetUpStretch set_up;
     if (config.dimension == 2) return std::make_unique<RunOf<2>>(config, options, console);
     return std::make_unique<RunOf<3>>(config, options, console);
 }

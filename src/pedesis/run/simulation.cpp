@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
+#include "pedesis/core/stage.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run_directory.hpp"
 
@@ -79,6 +80,8 @@ template <int D> void Simulation<D>::add_operation(Trigger trigger, std::functio
 
 template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, double max_time) {
     if (closed_) throw std::logic_error("Simulation::advance after close");
+    const CleanStopWindow window; // a signal from here on stops at a step boundary
+    enter_stage("running");
     const auto& dir = options_.out_dir;
     // a time limit within rounding of the clock is reached (a stepped clock is k dt)
     const auto reached = [&] {
@@ -115,6 +118,7 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
                 schedule_.frames.schedule(step, time);
             }
             if (schedule_.checkpoint.due(step, time)) {
+                enter_stage("writing a checkpoint");
                 engine_.save_checkpoint(dir / "checkpoint.bin");
                 schedule_.checkpoint.schedule(step, time);
             }
@@ -132,6 +136,7 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
 }
 
 template <int D> void Simulation<D>::close(const char* ended_by) {
+    const CleanStopWindow window; // the close completes; a second signal cuts it short
     open();
     if (closed_) return;
     closed_ = true;
@@ -146,6 +151,7 @@ template <int D> void Simulation<D>::close(const char* ended_by) {
     if (frames_this_run_ == 0 || last_frame_step_ != engine_.step() ||
         last_frame_time_ != engine_.time())
         write_frame();
+    enter_stage("writing a checkpoint");
     engine_.save_checkpoint(options_.out_dir / "checkpoint.bin");
     on_process_zero(options_.comm, [&] { close_files(); });
     nlohmann::json summary = engine_.summary(stopped_by_ ? stopped_by_ : ended_by);
@@ -206,6 +212,7 @@ template <int D> void Simulation<D>::write_log_row() {
 }
 
 template <int D> void Simulation<D>::write_frame() {
+    enter_stage("writing a frame");
     // (every process makes the engine's call: under a Communicator it gathers the state)
     const Frame<D> frame = engine_.frame();
     on_process_zero(options_.comm, [&] { frames_->write(frame, engine_.frames()); });

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace pedesis {
 
@@ -45,12 +46,13 @@ void check_file(const ParticleFile<D>& f, const Box<D>& box, const std::string& 
 template <int D> Vec<D> random_unit_vector(std::uint64_t seed, std::uint32_t tag) {
     CounterRng rng(seed, RngStream::initial_director, tag);
     Vec<D> v;
-    double len2 = 0.0;
-    do {
+    // a draw this short has probability below 1e-36; 64 in a row means a broken generator
+    for (int draw = 0; draw < 64; ++draw) {
         for (int a = 0; a < D; ++a) v[a] = rng.normal();
-        len2 = norm2(v);
-    } while (len2 < 1e-24);
-    return v * (1.0 / std::sqrt(len2));
+        const double len2 = norm2(v);
+        if (len2 >= 1e-24) return v * (1.0 / std::sqrt(len2));
+    }
+    throw std::logic_error("initial directors: 64 normal draws in a row of length zero");
 }
 
 } // namespace

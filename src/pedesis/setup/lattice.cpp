@@ -1,6 +1,7 @@
 #include "pedesis/setup/lattice.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/stage.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -50,6 +51,7 @@ template <int D> Basis<D> basis(LatticeKind kind) {
 template <int D>
 std::vector<Vec<D>> lattice_sites(LatticeKind kind, const Vec<D>& lo, const Vec<D>& hi,
                                   const std::array<bool, D>& closed, std::size_t n) {
+    enter_stage("placing particles on a lattice");
     const Basis<D> b = basis<D>(kind);
     Vec<D> L = hi - lo;
     for (int a = 0; a < D; ++a)

@@ -1,6 +1,7 @@
 #include "pedesis/setup/random_placement.hpp"
 
 #include "pedesis/core/rng.hpp"
+#include "pedesis/core/stage.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
 #include <algorithm>
@@ -12,6 +13,7 @@ namespace pedesis {
 template <int D>
 void place_randomly(std::vector<Vec<D>>& pos, std::vector<double>& radii, const Box<D>& box,
                     const PlacementRequest<D>& req, std::uint64_t seed) {
+    enter_stage("placing particles at random");
     double max_radius = req.radius, min_radius = req.radius;
     for (double r : radii) {
         max_radius = std::max(max_radius, r);

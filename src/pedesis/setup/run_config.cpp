@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/machine_memory.hpp"
+#include "pedesis/core/stage.hpp"
 #include "pedesis/io/config_table.hpp"
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/quantities.hpp"
@@ -497,6 +498,7 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
 } // namespace
 
 RunConfig load_run_config(const std::string& path, bool scripted) {
+    enter_stage("reading the config");
     return read_run_config(parse_toml_file(path), path, scripted);
 }
 

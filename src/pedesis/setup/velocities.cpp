@@ -4,6 +4,7 @@
 #include "pedesis/core/rng.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace pedesis {
 
@@ -28,10 +29,12 @@ Vec<D> draw_velocity(const VelocitySpec& spec, double mass, std::uint64_t seed, 
         break;
     case VelocityKind::equal_speed: {
         double n2 = 0.0;
-        do {
+        // an exact zero has probability 0; 64 in a row means a broken generator
+        for (int draw = 0; draw < 64 && n2 == 0.0; ++draw) {
             for (int a = 0; a < D; ++a) v[a] = rng.normal();
             n2 = norm2(v);
-        } while (n2 == 0.0);
+        }
+        if (n2 == 0.0) throw std::logic_error("velocities: 64 normal draws in a row of zero");
         v *= spec.speed / std::sqrt(n2);
         break;
     }

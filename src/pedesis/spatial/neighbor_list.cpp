@@ -1,6 +1,7 @@
 #include "pedesis/spatial/neighbor_list.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/stage.hpp"
 
 #include <fmt/format.h>
 
@@ -149,6 +150,7 @@ template <int D> void NeighborList<D>::make_sweep() {
 }
 
 template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
+    enter_stage("building the neighbour list");
     const std::size_t n = pos.size();
     if (n > max_particles)
         throw InputError(

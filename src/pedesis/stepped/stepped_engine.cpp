@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/particle_checks.hpp"
+#include "pedesis/core/stage.hpp"
 #include "pedesis/event/collision_rules.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/stepped/rewind.hpp"
@@ -35,6 +36,7 @@ template <int D>
 SteppedEngine<D>::SteppedEngine(ParticleStore<D> particles, const Box<D>& box,
                                 const SteppedParams& params)
     : p_(std::move(particles)), box_(box), params_(params), dt_(params.dt) {
+    enter_stage("setting up the stepped engine");
     if (p_.size() == 0) throw InputError("stepped engine: no particles (N = 0)");
     if (p_.size() > std::numeric_limits<std::uint32_t>::max() / 2)
         throw InputError("stepped engine: too many particles");
