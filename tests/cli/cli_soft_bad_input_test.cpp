@@ -160,5 +160,18 @@ TEST_F(SoftBadInput, InitialFileFaultsNameTheParticle) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
+// Two species on the same lattice in the same region: every site of the smaller one on a
+// site of the other. The pair force has no direction there (0/0); found by the fuzz_run
+// target as a NaN at the first log row, it is now bad input, named at set-up.
+TEST_F(SoftBadInput, CoincidentParticlesAreRefused) {
+    expect_rejected("dimension = 3\ndynamics = \"brownian\"\nseed = 1\n[box]\nlength = 9.0\n"
+                    "[[species]]\nname = \"A\"\ncount = 14\nradius = 0.5\npositions = \"fcc\"\n"
+                    "[[species]]\nname = \"B\"\ncount = 32\nradius = 0.5\npositions = \"fcc\"\n"
+                    "[[force]]\nname = \"harmonic\"\nk = 10.0\n[[integrator]]\n"
+                    "name = \"brownian\"\nT = 0.1\ngamma = 1.0\n[run]\nsteps = 5\ndt = 0.001\n"
+                    "[output]\nprogress = false\n",
+                    {"run.toml: particles", "start at the same position"});
+}
+
 } // namespace
 } // namespace pedesis::test

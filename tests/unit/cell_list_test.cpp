@@ -186,8 +186,15 @@ TEST(CellList, WiderReachMatchesBruteForce) {
             check_box(Box<3>(L, {periodic, periodic, periodic}), 1.0, 200, seed++, 0.45);
     }
     check_box(Box<3>(Vec<3>{{2.4, 5.0, 1.1}}, {true, false, true}), 1.0, 150, seed++, 0.35);
-    // the usual stencil: a grid whose cells equal the reach scans one cell each way
-    CellList<2> cells(Box<2>(Vec<2>{{10.0, 10.0}}, {true, true}), 2.5);
+    // the usual stencil: a grid whose cells are as wide as the reach scans one cell each
+    // way; a box of exactly 4 cells of 2.5 gets 3 (cells are a relative 1e-10 wider than
+    // asked, against the rounding of binning)
+    CellList<2> cells(Box<2>(Vec<2>{{10.5, 10.0}}, {true, true}), 2.5);
+    EXPECT_EQ(cells.cells_along(0), 4);
+    EXPECT_EQ(cells.cells_along(1), 3);
     EXPECT_EQ(cells.cells_to_reach(2.5), 1);
-    EXPECT_EQ(cells.cells_to_reach(2.6), 2);
+    EXPECT_EQ(cells.cells_to_reach(2.62), 1);
+    // exactly the narrower width: rounding in the binning could put such a pair two
+    // cells apart, so it takes two
+    EXPECT_EQ(cells.cells_to_reach(2.625), 2);
 }

@@ -8,6 +8,8 @@
 #include "pedesis/event/prediction.hpp"
 #include "pedesis/io/binary_stream.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -104,9 +106,11 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     radius_rate_.assign(radius_.size(), 0.0);
     if (params_.growth_rate > 0.0) start_growth();
     if (!choose_skin())
-        throw InputError("box: periodic length " + std::to_string(min_periodic_length()) +
-                         " must exceed twice the largest contact distance (" +
-                         std::to_string(4.0 * max_radius) + ")");
+        throw InputError(fmt::format(
+            "box: periodic length {:g} must be at least {:g} times the largest contact "
+            "distance ({:g}): a pair meets one image only, and the neighbour lists need room "
+            "between the two",
+            min_periodic_length(), 2.0 * (1.0 + min_room_fraction), 2.0 * max_radius));
     make_grids();
     build_all_lists();
     check_no_overlap(1e-10);
@@ -129,8 +133,14 @@ template <int D> bool EventEngine<D>::choose_skin() {
     for (auto s : p_.species) mean_diameter += 2.0 * radius_[s];
     mean_diameter /= static_cast<double>(p_.size());
     skin_ = params_.skin >= 0.0 ? params_.skin : default_skin(mean_diameter);
-    const double room = 0.5 * min_periodic_length() - 2.0 * max_radius;
-    if (room <= 0.0) return false;
+    // The lists' skin must fit between the largest contact and half the periodic length
+    // (one image per pair). A box barely wider than that leaves a skin so thin that the
+    // lists are rebuilt every 1e-16 time units and the run stalls (one particle in a
+    // square of 4 radii + 1 ulp, found by the brute-force tests): half the length must
+    // exceed the contact by a tenth of it, so that the skin is at least 0.045 contacts.
+    const double contact = 2.0 * max_radius;
+    const double room = 0.5 * min_periodic_length() - contact;
+    if (!(room >= min_room_fraction * contact)) return false;
     skin_ = std::min(skin_, (growth_.growing ? 0.4 : 0.45) * room);
     if (!(skin_ > 0.0)) throw InputError("event.skin must be positive");
     shell_ = growth_.growing ? skin_ / 3.0 : 0.5 * skin_;
@@ -243,8 +253,8 @@ template <int D> void EventEngine<D>::growth_step(bool full) {
         std::ostringstream m;
         m << "event engine: at t = " << now_ << " the particles have grown to a contact distance "
           << 2.0 * *std::max_element(radius_.begin(), radius_.end())
-          << ", half the periodic box length " << min_periodic_length()
-          << " or more; use a larger box (more particles)";
+          << ", and the periodic box length " << min_periodic_length() << " must be at least "
+          << 2.0 * (1.0 + min_room_fraction) << " times that; use a larger box (more particles)";
         throw RunError(m.str());
     }
     relist();
@@ -298,14 +308,13 @@ template <int D> void EventEngine<D>::make_grids() {
     grids_.clear();
     for (double r : class_radius_) grids_.emplace_back(box_, 2.0 * r + skin_);
     // cells each class's particles scan in each grid: reach = the two classes' largest
-    // radii + skin (a hair below the exact ratio, so that rounding never widens the
-    // usual 3-cell stencil of a grid whose cells are exactly the reach)
+    // radii + skin (CellList's margins keep a class's own reach at the 3-cell stencil)
     const std::size_t classes = class_radius_.size();
     reach_cells_.assign(classes * classes, 1);
     for (std::size_t c = 0; c < classes; ++c)
         for (std::size_t k = 0; k < classes; ++k)
-            reach_cells_[c * classes + k] = grids_[k].cells_to_reach(
-                (class_radius_[c] + class_radius_[k] + skin_) * (1.0 - 1e-12));
+            reach_cells_[c * classes + k] =
+                grids_[k].cells_to_reach(class_radius_[c] + class_radius_[k] + skin_);
 }
 
 // Calls f(j) for every particle whose list centre may lie within contact + skin of i's:
@@ -558,6 +567,22 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     ++counters_.list_rebuilds;
 }
 
+// Why events pile up at one instant: growing particles that have jammed (they touch in
+// a cage, or a wall, and cannot grow further), or inelastic collapse; with elastic
+// collisions and no growth, particles wedged against each other and the walls.
+template <int D> std::string EventEngine<D>::stall_cause() const {
+    if (growth_.growing)
+        return fmt::format("the growing particles have jammed at packing fraction {:.6g} and "
+                           "cannot grow further: ask for less (event.growth_packing_fraction, "
+                           "event.growth_max_pressure) or grow more slowly",
+                           packing_fraction());
+    if (params_.restitution < 1.0 || params_.wall_restitution < 1.0)
+        return "this is inelastic collapse: set event.tc > 0 (TC model) or raise the "
+               "restitution";
+    return "the particles are wedged against each other and the walls (all collisions are "
+           "elastic): start them further apart";
+}
+
 template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
     // a signal is looked for every 4096 events: microseconds apart, and no cost per event
     for (std::uint32_t since_check = 0;; ++since_check) {
@@ -580,9 +605,8 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
             if (++stalled_events_ > 1000 + 200 * static_cast<std::uint64_t>(p_.size())) {
                 std::ostringstream m;
                 m << "event engine: time stopped advancing at t = " << te << " (" << stalled_events_
-                  << " events at the same instant, last at " << tag_name(p_.tag[i])
-                  << "); this is inelastic collapse: set event.tc > 0 (TC model) or raise the "
-                     "restitution";
+                  << " events at the same instant, last at " << tag_name(p_.tag[i]) << "); "
+                  << stall_cause();
                 throw RunError(m.str());
             }
         } else {

@@ -100,6 +100,10 @@ template <int D> class EventEngine {
 
     std::size_t memory_bytes() const;
 
+    // Half the shortest periodic length must exceed the largest contact by this fraction
+    // of it (choose_skin): room for the lists' skin.
+    static constexpr double min_room_fraction = 0.1;
+
     // Exact state, so that a restored engine continues bit for bit.
     void save(std::ostream& out) const;
     static EventEngine load(std::istream& in, const EventParams& params);
@@ -141,6 +145,7 @@ template <int D> class EventEngine {
     void end_growth(GrowthEnd why);
     bool choose_skin();
     double min_periodic_length() const;
+    std::string stall_cause() const;
     void relist();
     bool growth_due() const;
     bool pressure_window_full() const;

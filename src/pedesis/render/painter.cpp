@@ -1,5 +1,8 @@
 #include "pedesis/render/painter.hpp"
 
+#include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -127,7 +130,12 @@ void draw_particles(cairo_t* cr, const Layout& L, const Frame& f, const Style& s
     // A disk wider than the whole picture looks the same as one just covering it; Cairo
     // would approximate a huge one with ever more segments (a radius of 1e308 never ended).
     const double widest = 2.0 * (L.box_w + L.box_h);
+    std::size_t drawn = 0;
     for (std::size_t i : order) {
+        // a frame of 10^5 disks takes seconds: a signal must not wait for its end (the
+        // render's close removes the half-made movie; core/interrupt.hpp)
+        if ((++drawn & 1023u) == 0 && interrupt_requested())
+            throw InputError("render interrupted while drawing a frame");
         const double r = std::min(f.radius[i] * L.scale, widest);
         if (!(r > 0.0)) continue;
         Rgb fill = particle_colour(f, i, s);

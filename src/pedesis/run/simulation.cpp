@@ -236,11 +236,16 @@ template <int D> void Simulation<D>::fail(const RunError& e) {
 
 template <int D> std::string Simulation<D>::failure_note() const {
     if (!in_directory()) return "";
-    if (frames_this_run_ == 0)
+    if (frames_this_run_ == 0) {
+        // (a failure at step 0 of a fresh run: nothing good was written but the log)
+        if (!options_.restart)
+            return fmt::format(" (no snapshot or checkpoint was written by this run; the log "
+                               "is in {})",
+                               options_.out_dir.string());
         return fmt::format(" (no snapshot was written by this run; the last good state is the "
                            "checkpoint it started from, {}; the log is in {})",
-                           options_.restart ? options_.restart->string() : std::string("-"),
-                           options_.out_dir.string());
+                           options_.restart->string(), options_.out_dir.string());
+    }
     // name only files that exist: a run that fails before its first checkpoint has none
     const bool checkpoint = std::filesystem::exists(options_.out_dir / "checkpoint.bin");
     return fmt::format(" (the last good snapshot is frame {} at t = {:.6g}; {} {})",

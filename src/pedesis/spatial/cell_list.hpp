@@ -1,6 +1,10 @@
 #pragma once
 // A cell list shared by every engine. Cells are at least `min_cell` wide, so all
-// pairs closer than min_cell sit in the same or adjacent cells. Correct for any box:
+// pairs closer than min_cell sit in the same or adjacent cells: wider by a relative
+// 1e-10, because binning a position rounds ((x - lo) and its product with n / L, a few
+// ulps of the cell count: below 3e-12 cells at 4096 cells), and a pair a hair closer
+// than exactly one cell width, one of them an ulp below a cell face, would otherwise be
+// binned two cells apart (found by the brute-force tests on random boxes). Correct for any box:
 // on axes with fewer than 3 cells the neighbouring cells are de-duplicated, and wall
 // axes do not wrap. Supports incremental insert/remove (the event engine moves one
 // particle at a time) as well as a full rebuild.
@@ -20,6 +24,11 @@ template <int D> class CellList {
     static constexpr std::int32_t none = -1;
     // 4096 cells along an axis in 2D, 406 in 3D: at most 2^24 and 2^26 cells (64 and 256 MB)
     static constexpr int max_cells_along = D == 2 ? 4096 : 406;
+    // How much wider than asked the cells are (see above), and the smaller margin by
+    // which cells_to_reach rounds up: far above the binning's rounding, and small
+    // enough that a reach of exactly min_cell still needs one cell.
+    static constexpr double width_margin = 1e-10;
+    static constexpr double reach_margin = 1e-11;
 
     CellList() = default;
     // With `periodic_multiple` m > 1, a periodic axis with at least m cells gets a
@@ -31,7 +40,8 @@ template <int D> class CellList {
             // the ratio is clamped before it becomes an int: a huge box, a tiny cutoff or
             // NaN from a crafted file must not overflow; the cap keeps the grid of a huge
             // sparse box within max_cells_along per axis (wider cells stay correct)
-            int n = clamped_int(box.length(a) / min_cell, 1, max_cells_along);
+            int n =
+                clamped_int(box.length(a) / (min_cell * (1.0 + width_margin)), 1, max_cells_along);
             if (box.periodic(a) && n >= periodic_multiple) n -= n % periodic_multiple;
             n_[a] = n;
             inv_w_[a] = n / box.length(a);
@@ -155,11 +165,13 @@ template <int D> class CellList {
                 f(static_cast<std::uint32_t>(j));
         });
     }
-    // Cells along each axis needed to reach distance `reach` from any point of a cell.
+    // Cells along each axis needed to reach distance `reach` from any point of a cell,
+    // whatever the binning's rounding.
     int cells_to_reach(double reach) const {
         int m = 1;
         for (int a = 0; a < D; ++a)
-            m = std::max(m, clamped_int(std::ceil(reach / cell_width(a)), 1, 1 << 30));
+            m = std::max(m, clamped_int(std::ceil(reach / cell_width(a) * (1.0 + reach_margin)), 1,
+                                        1 << 30));
         return m;
     }
 
