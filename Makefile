@@ -38,12 +38,13 @@ test: build
 validation: build
 	cd $(BUILD) && OMP_WAIT_POLICY=passive ctest --output-on-failure -j $(JOBS) -L validation
 
-# The unit and CLI tests once more, built with AddressSanitizer and UBSan (build-asan/).
+# The unit and CLI tests once more, built with AddressSanitizer and UBSan (build-asan/;
+# only they and the binary are built: the physics tests' long runs are the release build's).
 # Warnings are the release build's job: at -O1 with the sanitizers GCC 12 warns about
 # its own <regex> (maybe-uninitialized).
 sanitize: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS=-O1 -DPEDESIS_SANITIZE=ON -DPEDESIS_WERROR=OFF
-	cmake --build build-asan -j $(JOBS)
+	cmake --build build-asan -j $(JOBS) --target unit_and_cli_tests
 	cd build-asan && OMP_WAIT_POLICY=passive ASAN_OPTIONS=detect_leaks=1 \
 	  LSAN_OPTIONS=suppressions=$(abspath scripts/lsan-suppressions.txt) \
 	  ctest --output-on-failure -j $(JOBS) -L "unit|cli"

@@ -3,6 +3,7 @@
 // targets' own code (fuzz/fuzz_inputs.hpp) in every build: each must be read or refused
 // with an InputError. Under `make sanitize` a memory or UB error here fails the run.
 #include "fuzz/fuzz_inputs.hpp"
+#include "fuzz/fuzz_run_input.hpp"
 
 #include <gtest/gtest.h>
 
@@ -72,4 +73,30 @@ TEST(FuzzRegressions, CheckpointSeedsAreValidCheckpoints) {
 }
 TEST(FuzzRegressions, SweepReader) {
     EXPECT_GE(replay("fuzz_sweep", pedesis::fuzz::sweep_input), 3);
+}
+
+// The running target (fuzz_run): its seeds, a small config of every engine in 2D and 3D,
+// and every input that once made a run crash, hang or fail other than by a documented stop.
+TEST(FuzzRegressions, Runs) {
+    // the 12 seeds and its first findings: a growth run that never ended (the box half a
+    // contact too small), growing particles jammed against walls (an exit-3 stop that
+    // must name the jam), coinciding soft particles (refused, no NaN)
+    EXPECT_GE(replay("fuzz_run", pedesis::fuzz::run_input), 18);
+}
+
+// The seeds are configs the engines accept: each is set up and run, not refused, so a change
+// of the mapping from bytes to configs that made them refusals would show here.
+TEST(FuzzRegressions, RunSeedsRun) {
+    const fs::path dir = fs::path(PEDESIS_SOURCE_DIR) / "fuzz" / "corpus" / "fuzz_run";
+    int seeds = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        std::ifstream in(entry.path(), std::ios::binary);
+        const std::vector<char> bytes(std::istreambuf_iterator<char>(in), {});
+        const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+        EXPECT_NO_THROW(pedesis::fuzz::run_input(data, bytes.size()))
+            << entry.path() << "\n"
+            << pedesis::fuzz::run_config_text(data, bytes.size());
+        ++seeds;
+    }
+    EXPECT_GE(seeds, 12);
 }
