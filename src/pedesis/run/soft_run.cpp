@@ -69,7 +69,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         evolver_->set_sort_interval(c_.sort_every);
         for (const auto* list : {&c_.forces, &c_.torques, &c_.integrators})
             for (const auto& spec : *list) add_plugin(*evolver_, spec, table, c_.seed);
-        if (!o_.restart) refuse_coincident_particles(state_, evolver_->neighbor_list(), c_.file);
+        // (on one process: under MPI the list is built after the decomposition, on each
+        // process's share, and a refusal there would not reach the others)
+        if (!o_.restart && !(o_.comm && o_.comm->size() > 1))
+            refuse_coincident_particles(state_, evolver_->neighbor_list(), c_.file);
         if (o_.restart) {
             load_soft_checkpoint(*o_.restart, c_, state_, *evolver_, book_);
             if (state_.step >= c_.steps)
