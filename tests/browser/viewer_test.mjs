@@ -10,6 +10,12 @@
 // every particle that no other covers has its species' colour in the PNG the screenshot
 // button saves; colouring by speed changes the colours; the plot has a point per row of
 // log.csv. And it sends the server bad requests: each a 4xx with a message.
+//
+// Every page is watched for errors: uncaught exceptions, console errors (a resource that
+// failed to load, a Content-Security-Policy violation) and securitypolicyviolation events.
+// A run whose every string holds markup and script (species names, log columns, the
+// directory's name) is opened served and exported: nothing of it runs, and the page shows
+// it as text.
 import { spawn, execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
 import fs from 'node:fs';
@@ -59,6 +65,30 @@ function readXyz(file) {
     at += 2 + n;
   }
   return frames;
+}
+
+// Collects what goes wrong in a page (returned array; filled as it happens).
+async function watch(page) {
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(`exception: ${e}`));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+  // (an init script runs before the page's own, whatever its policy)
+  await page.addInitScript(() => {
+    document.addEventListener('securitypolicyviolation', (e) => {
+      console.error(`CSP violation: ${e.violatedDirective} ${e.blockedURI}`);
+    });
+  });
+  return errors;
+}
+
+// Waits for fn in the page; false (instead of an exception) after `timeout` ms.
+async function waitFor(page, fn, arg, timeout = 10000) {
+  try {
+    await page.waitForFunction(fn, arg, { timeout });
+    return true;
+  } catch (e) {
+    return false;
+  }
 }
 
 function startServer(dir) {
@@ -125,8 +155,13 @@ async function pngDifference(page, a, b) {
 // In a 2D view: the PNG's pixel at the projected centre of each particle of `free` (no
 // other covers it) has its species' colour. Returns the PNG as a data URL.
 async function speciesAtCentres(page, name, way, f, free, names) {
-  // one size for the view in both pages (the panels beside it settle at their own pace)
-  await page.addStyleTag({ content: '#view { width: 800px !important; height: 520px !important; flex: none !important; }' });
+  // one size for the view in both pages (the panels beside it settle at their own pace);
+  // through the CSSOM, which the page's policy allows (a <style> element it refuses)
+  await page.evaluate(() => {
+    const view = document.querySelector('#view');
+    for (const [property, value] of [['width', '800px'], ['height', '520px'], ['flex', 'none']])
+      view.style.setProperty(property, value, 'important');
+  });
   await page.waitForFunction(() => {
     const c = document.querySelector('#view canvas[style*="relative"]');
     return c.width === 800 && c.height === 520;
@@ -154,11 +189,35 @@ async function checkRun(browser, name, dimension, dir) {
   const { server, url } = await startServer(dir);
   try {
     const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
-    const errors = [];
-    page.on('pageerror', (e) => errors.push(String(e)));
+    const errors = await watch(page);
     await page.goto(url);
     await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
     const n = xyz[0].pos.length;
+    // the legend (and colour bar) lie beside the drawing, never over particles
+    const overlap = await page.evaluate(() => {
+      const a = document.querySelector('#colourbar').getBoundingClientRect();
+      const b = document.querySelector('#view canvas[style*="relative"]').getBoundingClientRect();
+      const x = Math.min(a.right, b.right) - Math.max(a.left, b.left);
+      const y = Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top);
+      return { shown: a.height > 0 && a.width > 0, area: Math.max(x, 0) * Math.max(y, 0) };
+    });
+    check(overlap.shown && overlap.area === 0,
+      `${name}: the species legend is shown and does not cover the drawing (${overlap.area} px² shared)`);
+    if (dimension === 3) {
+      // the first view holds the whole box: its 8 corners project inside the canvas
+      const inside = await page.evaluate(() => {
+        const { box_lo: lo, box_length: L } = window.pedesisView.info;
+        const r = document.querySelector('#view canvas[style*="relative"]').getBoundingClientRect();
+        let count = 0;
+        for (let c = 0; c < 8; ++c) {
+          const p = window.pedesisView.projectPoint(lo[0] + (c & 1) * L[0], lo[1] + ((c >> 1) & 1) * L[1],
+            lo[2] + ((c >> 2) & 1) * L[2]);
+          if (p.x >= r.left && p.x <= r.right && p.y >= r.top && p.y <= r.bottom) count += 1;
+        }
+        return count;
+      });
+      check(inside === 8, `${name}: the first 3D view shows the whole box (${inside} of its 8 corners)`);
+    }
     check(await page.evaluate(() => window.pedesisView.instanceCount()) === n,
       `${name}: draws N = ${n} instances`);
     check(await page.evaluate(() => window.pedesisView.frames()) === xyz.length,
@@ -222,7 +281,7 @@ async function checkRun(browser, name, dimension, dir) {
       const distinct = new Set(after).size;
       check(changed > n / 2 && distinct > 10, `${name}: colour by speed changes ${changed} of ${n} colours (${distinct} distinct)`);
     }
-    check(errors.length === 0, `${name}: no error in the page ${errors.join('; ')}`);
+    check(errors.length === 0, `${name}: no error in the page (nor CSP violation) ${errors.join('; ')}`);
     await page.close();
     return url;
   } finally {
@@ -266,8 +325,7 @@ async function checkExport(browser, dir) {
     return route.abort();
   });
   const page = await context.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
+  const errors = await watch(page);
   await page.goto('file://' + file);
   await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
   check(await page.evaluate(() => window.pedesisView.frames()) === 3, 'export: holds frames 0, 2 and 4');
@@ -327,13 +385,43 @@ async function checkLive(browser) {
   let stopped = false;
   try {
     const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    const errors = await watch(page);
     await page.goto(url);
     await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
-    const first = await page.evaluate(() => window.pedesisView.frames());
+    const [first, opened] = await page.evaluate(() => [window.pedesisView.frames(), window.pedesisView.frameIndex()]);
+    check(opened === first - 1 && await page.evaluate(() => document.querySelector('#follow').checked
+      && !document.querySelector('#follow-label').hidden),
+    `live: the page opens at the newest frame (${opened} of ${first}), "follow" shown and ticked`);
     await new Promise((done) => setTimeout(done, 2500));
     const later = await page.evaluate(() => window.pedesisView.frames());
     check(first >= 1 && later > first, `live (run --view): the page's frame count grows from ${first} to ${later}`);
+    const followed = await waitFor(page, (k) => window.pedesisView.frames() > k
+      && window.pedesisView.frameIndex() === window.pedesisView.frames() - 1, first, 6000);
+    const at = await page.evaluate(() => [window.pedesisView.frameIndex(), window.pedesisView.frames()]);
+    check(followed, `live: it follows the newest frame as the run writes them (frame ${at[0]} of ${at[1]})`);
+    // scrubbing stops following: the page stays where the user put it
+    await page.evaluate(() => {
+      const slider = document.querySelector('#slider');
+      slider.value = '0';
+      slider.dispatchEvent(new Event('input'));
+    });
+    await new Promise((done) => setTimeout(done, 2500));
+    const [stayed, following, ticked] = await page.evaluate(() => [window.pedesisView.frameIndex(),
+      window.pedesisView.following(), document.querySelector('#follow').checked]);
+    check(stayed === 0 && !following && !ticked,
+      `live: scrubbing to frame 0 stops following (at frame ${stayed}; "follow" ${ticked ? '' : 'un'}ticked)`);
 
+    // the slider lies within the range the server allows, and the number box beside it
+    // takes that whole range
+    const range = await page.evaluate(() => {
+      const t = window.pedesisView.info.steerable.find((p) => p.name === 'temperature');
+      const slider = document.querySelector('#steer-temperature');
+      const exact = slider.parentElement.querySelector('input.exact');
+      return { min: t.min, max: t.max, slider: [Number(slider.min), Number(slider.max)], exact: [exact.min, exact.max] };
+    });
+    check(Number.isFinite(range.min) && Number.isFinite(range.max) && range.slider[0] >= range.min
+      && range.slider[1] <= range.max && range.exact[0] === String(range.min) && range.exact[1] === String(range.max),
+    `live: temperature's slider spans [${range.slider}] within the allowed [${range.min}, ${range.max}], its number box all of it`);
     // the page's control, as a user would move it
     await moveSlider(page, 'temperature', '0.5');
     check(true, 'live: the temperature slider sent T = 0.5 and the server queued it');
@@ -359,6 +447,7 @@ async function checkLive(browser) {
       'live: without the token the page shows the controls disabled');
     await readOnly.close();
     await new Promise((done) => setTimeout(done, 1500));
+    check(errors.length === 0, `live: no error in the page (nor CSP violation) ${errors.join('; ')}`);
     await page.close();
     run.kill('SIGTERM');
     stopped = true;
@@ -490,6 +579,85 @@ async function checkOwnColumn(browser) {
   }
 }
 
+// A run whose strings are markup and script: species names, log.csv's column names and the
+// run directory's name, in an extended XYZ file and a log written by hand (four disks at
+// rest). Served (pedesis view) and exported (--export), the page runs none of it
+// (window.__pwned stays unset), shows every name as literal text in the legend, the plot's
+// menu and the title, and its policy reports no violation; the server sends its
+// Content-Security-Policy with the page, and the exported file carries one and names no
+// path of this machine. Coloured by speed, the all-zero frame is the bar's low end, 0.
+const HOSTILE = ['<img/src/onerror=window.__pwned=1>', '</script><script>window.__pwned=2</script>',
+  '<!--<script>', 'a&amp;b'];
+
+async function hostilePage(page, name) {
+  await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+  const shown = await page.evaluate(() => ({
+    pwned: window.__pwned,
+    legend: [...document.querySelectorAll('#colourbar .name')].map((e) => e.textContent),
+    images: document.querySelectorAll('#colourbar img, #colourbar script, #column img').length,
+    title: document.querySelector('#title').textContent,
+  }));
+  check(shown.pwned === undefined && shown.images === 0, `${name}: no script of the run's strings ran (window.__pwned ${shown.pwned})`);
+  check(JSON.stringify(shown.legend) === JSON.stringify(HOSTILE),
+    `${name}: the legend shows the species names as text: ${JSON.stringify(shown.legend)}`);
+  check(shown.title.includes('hostile<b>run'), `${name}: the title shows the run's name as text: ${shown.title}`);
+  const columns = await page.evaluate(() => (window.pedesisView.logPoints(), [...document.querySelectorAll('#column option')].map((o) => o.text)));
+  check(HOSTILE.every((h) => columns.includes(h)), `${name}: the plot's menu shows log.csv's columns as text: ${JSON.stringify(columns)}`);
+  await page.evaluate(() => window.pedesisView.setColour('speed'));
+  const bar = await page.evaluate(() => [document.querySelector('#colourbar .lo')?.textContent,
+    document.querySelector('#colourbar .hi')?.textContent,
+    [0, 1, 2, 3].map((i) => window.pedesisView.instanceColour(i))]);
+  check(Number(bar[0]) === 0 && Number(bar[1]) > 0 && bar[2].every((c) => c === '440154'),
+    `${name}: every speed 0: the bar reads ${bar[0]} to ${bar[1]} and the disks are its low end (${bar[2].join(' ')})`);
+}
+
+async function checkHostile(browser) {
+  const dir = path.join(scratch, 'hostile<b>run');
+  fs.mkdirSync(dir, { recursive: true });
+  fs.writeFileSync(path.join(dir, 'trajectory.xyz'), '4\n' +
+    'Lattice="12 0 0 0 12 0 0 0 1" Origin="-6 -6 -0.5" pbc="T T F" ' +
+    'Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3 Time=0\n' +
+    HOSTILE.map((h, k) => `${h} ${3 * k - 4.5} 0 0 1.0 0 0 0\n`).join(''));
+  fs.writeFileSync(path.join(dir, 'log.csv'), `time,step,${HOSTILE.join(',')}\n0,0,1,2,3,4\n1,10,2,3,4,5\n`);
+  const { server, url } = await startServer(dir);
+  try {
+    const index = await fetch(url);
+    const policy = index.headers.get('content-security-policy') || '';
+    check(/script-src 'self'/.test(policy) && !/unsafe/.test(policy),
+      `served page: index.html comes with its Content-Security-Policy: ${policy}`);
+    const icon = await fetch(url + 'favicon.ico');
+    check(icon.status === 200 && /^image\//.test(icon.headers.get('content-type')),
+      `served page: /favicon.ico is ${icon.status} ${icon.headers.get('content-type')}`);
+    const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    const errors = await watch(page);
+    await page.goto(url);
+    await hostilePage(page, 'hostile names (served)');
+    check(errors.length === 0, `hostile names (served): no error in the page, nor CSP violation ${errors.join('; ')}`);
+    await page.close();
+  } finally {
+    server.kill('SIGINT');
+  }
+
+  const file = path.join(scratch, 'hostile.html');
+  execFileSync(binary, ['view', dir, '--export', file], { stdio: 'ignore' });
+  const html = fs.readFileSync(file, 'utf8');
+  const home = path.resolve(scratch);
+  check(/<meta http-equiv="Content-Security-Policy" content="default-src 'none'; script-src 'sha256-[A-Za-z0-9+/=]+'/.test(html)
+    && !/unsafe/.test(html.match(/<meta http-equiv="Content-Security-Policy"[^>]*>/)[0]),
+  'hostile export: the file carries a Content-Security-Policy that runs only its own script, by its hash');
+  check(!html.includes(home), `hostile export: it names no path of this machine (${home})`);
+  check(HOSTILE.every((h) => !html.includes(h)) && !html.includes('<img'),
+    'hostile export: no name stands in it unescaped (the run is JSON data with every < written \\u003c)');
+  const context = await browser.newContext({ viewport: { width: 1100, height: 700 } });
+  await context.route('**/*', (route) => (route.request().url().startsWith('file:') ? route.continue() : route.abort()));
+  const page = await context.newPage();
+  const errors = await watch(page);
+  await page.goto('file://' + file);
+  await hostilePage(page, 'hostile names (export)');
+  check(errors.length === 0, `hostile names (export): no error in the page, nor CSP violation ${errors.join('; ')}`);
+  await context.close();
+}
+
 async function main() {
   if (!fs.existsSync(CHROMIUM)) throw new Error(`${CHROMIUM} is missing: install Debian's chromium (make deps)`);
   const runs = [
@@ -511,6 +679,7 @@ async function main() {
       await checkRun(browser, name, dimension, path.join(scratch, name.replace(' ', '_')));
     await checkExport(browser, path.join(scratch, 'soft_2D'));
     await checkOwnColumn(browser);
+    await checkHostile(browser);
     await checkLive(browser);
     await checkLiveEvent(browser);
   } finally {

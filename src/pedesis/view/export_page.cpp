@@ -11,8 +11,12 @@
 #include <nlohmann/json.hpp>
 #include <openssl/evp.h>
 
+#include <cctype>
+#include <filesystem>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
+#include <string_view>
 
 namespace pedesis::view {
 
@@ -41,12 +45,54 @@ void replace_once(std::string& text, const std::string& what, const std::string&
     text.replace(at, what.size(), with);
 }
 
+// JSON text that may stand inside <script type="application/json">: no '<' (so no "</script"
+// or "<!--" can end or change the element), and no '>' or '&' either, each written as its
+// \u escape. These characters occur only inside JSON strings, where the escape means the
+// same character to JSON.parse.
+std::string json_for_html(const nlohmann::json& data) {
+    // names come from files: bytes that are not UTF-8 become U+FFFD rather than an error
+    const std::string text = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        if (c == '<')
+            out += "\\u003c";
+        else if (c == '>')
+            out += "\\u003e";
+        else if (c == '&')
+            out += "\\u0026";
+        else
+            out += c;
+    }
+    return out;
+}
+
+// What stands between <script> and </script> (or <style> and </style>) as it is: nothing
+// that ends the element or starts the parser's escaped states.
+void check_inline(const std::string& text, std::string_view what, std::string_view end) {
+    std::string lower(text);
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower.find(end) != std::string::npos || lower.find("<!--") != std::string::npos)
+        throw std::logic_error(
+            fmt::format("export: the page's {} holds '{}' or '<!--'", what, end));
+}
+
+// A path of this machine reduced to its last name (a directory's own for "runs/demo/").
+std::string base_name(const std::filesystem::path& path) {
+    std::filesystem::path p = path.lexically_normal();
+    if (p.filename().empty()) p = p.parent_path();
+    return p.filename().string();
+}
+
 } // namespace
 
 void export_page(const ExportOptions& o) {
     std::string html = page_text("index.html");
     const std::string script = page_text("viewer.js");
     const std::string style = page_text("viewer.css");
+    const std::string icon = page_text("favicon.ico");
+    check_inline(script, "viewer.js", "</script");
+    check_inline(style, "viewer.css", "</style");
     render::OpenedRun run = render::open_run_directory(o.run_dir, render::SourceKind::automatic);
     render::FrameSource& source = *run.source;
     const std::size_t frames = source.frames();
@@ -82,6 +128,16 @@ void export_page(const ExportOptions& o) {
 
     nlohmann::json data;
     data["info"] = run_info(source, first, o.run_dir);
+    // a file to share names no path of this machine: the run directory's and the trajectory
+    // file's own names only ("trajectory.xyz (extended XYZ)")
+    data["info"]["run"] = base_name(std::filesystem::absolute(o.run_dir));
+    {
+        const std::string described = source.description(); // "PATH (KIND)"
+        const auto kind = described.rfind(" (");
+        data["info"]["source"] =
+            base_name(described.substr(0, kind)) +
+            (kind == std::string::npos ? std::string() : described.substr(kind));
+    }
     data["info"]["frames"] = chosen.size();
     data["info"]["colour_by"] = colour_by;
     data["info"]["colour_by"].push_back("radius");
@@ -109,16 +165,26 @@ void export_page(const ExportOptions& o) {
         }
         out.push_back(std::move(frame));
     }
-    // (no "</" can end the script early: JSON text here is numbers, names and base64,
-    // and a name's "</" is written "<\/")
-    std::string json = data.dump();
-    for (auto at = json.find("</"); at != std::string::npos; at = json.find("</", at + 3))
-        json.replace(at, 2, "<\\/");
+    // The run travels as data, not as a script: a JSON block that the browser never runs,
+    // read by the bundle (JSON.parse), with no '<' in it (json_for_html). The policy lets
+    // only the bundle run and only the style apply, by their SHA-256 computed when the page
+    // was built (web/viewer/CMakeLists.txt), and nothing load from anywhere (images only
+    // from data: and blob: addresses: the icon, the screenshot).
+    const std::string policy =
+        fmt::format("default-src 'none'; script-src '{}'; style-src '{}'; img-src data: blob:; "
+                    "base-uri 'none'; form-action 'none'",
+                    page_text("viewer.js.sha256"), page_text("viewer.css.sha256"));
+    replace_once(
+        html, "<meta charset=\"utf-8\">",
+        "<meta charset=\"utf-8\">\n<meta http-equiv=\"Content-Security-Policy\" content=\"" +
+            policy + "\">");
+    replace_once(html, "<link rel=\"icon\" href=\"favicon.ico\" type=\"image/svg+xml\">",
+                 "<link rel=\"icon\" href=\"data:image/svg+xml;base64," + base64(icon) + "\">");
     replace_once(html, "<link rel=\"stylesheet\" href=\"viewer.css\">",
                  "<style>" + style + "</style>");
     replace_once(html, "<script src=\"viewer.js\"></script>",
-                 "<script>window.PEDESIS_EXPORT = " + json + ";</script>\n<script>" + script +
-                     "</script>");
+                 "<script type=\"application/json\" id=\"pedesis-export\">" + json_for_html(data) +
+                     "</script>\n<script>" + script + "</script>");
     write_file_atomically(o.output, [&](std::ostream& file) { file << html; });
 }
 

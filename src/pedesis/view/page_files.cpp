@@ -20,6 +20,9 @@
 PEDESIS_EMBED(pedesis_page_index_html, "index.html")
 PEDESIS_EMBED(pedesis_page_viewer_js, "viewer.js")
 PEDESIS_EMBED(pedesis_page_viewer_css, "viewer.css")
+PEDESIS_EMBED(pedesis_page_favicon_svg, "favicon.svg")
+PEDESIS_EMBED(pedesis_page_viewer_js_sha256, "viewer.js.sha256")
+PEDESIS_EMBED(pedesis_page_viewer_css_sha256, "viewer.css.sha256")
 #endif
 
 namespace pedesis::view {
@@ -38,10 +41,28 @@ std::optional<PageFile> page_file(std::string_view name) {
     if (name == "viewer.css")
         return PageFile{span(pedesis_page_viewer_css_begin, pedesis_page_viewer_css_end),
                         "text/css; charset=utf-8"};
+    // the icon is an SVG under the name browsers ask for by themselves
+    if (name == "favicon.ico")
+        return PageFile{span(pedesis_page_favicon_svg_begin, pedesis_page_favicon_svg_end),
+                        "image/svg+xml"};
+    if (name == "viewer.js.sha256")
+        return PageFile{
+            span(pedesis_page_viewer_js_sha256_begin, pedesis_page_viewer_js_sha256_end),
+            "text/plain; charset=utf-8"};
+    if (name == "viewer.css.sha256")
+        return PageFile{
+            span(pedesis_page_viewer_css_sha256_begin, pedesis_page_viewer_css_sha256_end),
+            "text/plain; charset=utf-8"};
 #else
     (void)name;
 #endif
     return std::nullopt;
+}
+
+std::string_view page_security_policy() {
+    return "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' data: blob:; "
+           "connect-src 'self'; worker-src 'self' blob:; base-uri 'none'; form-action 'none'; "
+           "frame-ancestors 'none'";
 }
 
 std::string page_missing() {

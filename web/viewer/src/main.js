@@ -6,6 +6,11 @@
 // arrows, and the run's log plotted with uPlot beside it, with a cursor at the frame's
 // time. Frames come from the server as binary typed arrays (src/pedesis/view), and only
 // a window of frames around the cursor is kept.
+//
+// Every string from the run or the server (species and column names, the run's name,
+// messages) reaches the document as text only (textContent, new Option), never as markup,
+// and styles are set through element.style: the page runs under a Content-Security-Policy
+// without 'unsafe-inline' (page_security_policy in src/pedesis/view/page_files.cpp).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import uPlot from 'uplot';
@@ -20,14 +25,23 @@ const PALETTE = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b
 // How the colour menu and bar name the numbers the server derives (others: their names).
 const LABELS = { speed: 'speed |v|', angle: 'polarity angle', kinetic_energy: 'kinetic energy m v²/2',
   vx: 'velocity x', vy: 'velocity y', vz: 'velocity z' };
-// A name from a file, shown as text.
-const escapeHtml = (text) => String(text).replace(/[&<>"']/g, (c) => `&#${c.charCodeAt(0)};`);
+// A new element with the given class and children (strings become text nodes, never markup).
+function element(tag, className, ...children) {
+  const e = document.createElement(tag);
+  if (className) e.className = className;
+  e.append(...children);
+  return e;
+}
 // viridis at 0, 1/4, 1/2, 3/4, 1
 const VIRIDIS = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
 
 // An exported page (pedesis view --export) carries the run inside: the same answers as
-// the server's, from window.PEDESIS_EXPORT instead of HTTP.
-const EXPORTED = window.PEDESIS_EXPORT || null;
+// the server's, from a JSON data block (<script type="application/json">, never run as a
+// script) instead of HTTP.
+const EXPORTED = (() => {
+  const data = document.getElementById('pedesis-export');
+  return data ? JSON.parse(data.textContent) : null;
+})();
 
 function fromBase64(text, Type) {
   const binary = atob(text);
@@ -100,6 +114,7 @@ class Viewer {
     this.mode = 'species';
     this.arrows = false;
     this.playing = false;
+    this.follow = false; // show each new frame as it comes (a run still going)
     this.wanted = 0; // the last frame asked for: a slower answer for another is dropped
 
     const view = $('view');
@@ -114,7 +129,8 @@ class Viewer {
     this.renderer.setClearColor(0xffffff, this.cpuDisks ? 0 : 1);
     if (this.cpuDisks) {
       this.disksCanvas = document.createElement('canvas');
-      this.disksCanvas.style.cssText = 'position:absolute;left:0;top:0;width:100%;height:100%';
+      Object.assign(this.disksCanvas.style, { position: 'absolute', left: '0', top: '0', width: '100%',
+        height: '100%' });
       view.prepend(this.disksCanvas);
       this.disksImage = null;
     }
@@ -128,10 +144,13 @@ class Viewer {
     } else {
       const size = Math.max(L[0], L[1], L[2]);
       this.camera = new THREE.PerspectiveCamera(40, 1, size / 100, size * 20);
-      this.camera.position.copy(this.centre).add(new THREE.Vector3(1.2, 0.9, 1.6).multiplyScalar(size));
+      // (placed by fitCamera, once the view's shape is known)
     }
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.target.copy(this.centre);
+    // until the user moves the camera, a 3D view keeps the whole box in sight as it resizes
+    this.cameraMoved = false;
+    this.controls.addEventListener('start', () => { this.cameraMoved = true; });
     if (this.dim === 2) {
       this.controls.enableRotate = false;
       this.controls.screenSpacePanning = true;
@@ -232,9 +251,26 @@ class Viewer {
         bottom: -half });
     } else {
       this.camera.aspect = aspect;
+      if (!this.cameraMoved) this.fitCamera();
     }
     this.camera.updateProjectionMatrix();
     this.requestRender();
+  }
+
+  // The 3D camera looks at the box's centre from a corner's side, far enough that the
+  // sphere round the box (and so all of its edges) fits both the height and the width of
+  // the view, with a margin of 5 %.
+  fitCamera() {
+    const L = this.info.box_length;
+    const radius = 0.5 * Math.hypot(L[0], L[1], L[2]);
+    const vertical = THREE.MathUtils.degToRad(this.camera.fov);
+    const horizontal = 2 * Math.atan(Math.tan(vertical / 2) * this.camera.aspect);
+    const distance = (1.05 * radius) / Math.sin(Math.min(vertical, horizontal) / 2);
+    this.camera.position.copy(this.centre)
+      .addScaledVector(new THREE.Vector3(1.2, 0.9, 1.6).normalize(), distance);
+    this.camera.far = Math.max(this.camera.far, distance + 4 * radius);
+    this.controls.target.copy(this.centre);
+    this.controls.update();
   }
 
   requestRender() {
@@ -359,14 +395,18 @@ class Viewer {
     this.ensureCapacity(n);
     const c = new THREE.Color(), rgb = {};
     const field = this.needsField() ? f.fields[this.needsField()] : null;
-    // the colour bar spans this frame's finite values (speed and energy from 0)
+    // the colour bar spans this frame's finite values; speed and energy from 0 (to 1 where
+    // every one is 0), another field a width of 1 round its value where all are equal
     let lo = 0, hi = 1;
     if (field && this.mode !== 'angle') {
-      lo = this.mode === 'speed' || this.mode === 'kinetic_energy' ? 0 : Infinity;
+      const fromZero = this.mode === 'speed' || this.mode === 'kinetic_energy';
+      lo = fromZero ? 0 : Infinity;
       hi = -Infinity;
       for (let i = 0; i < n; ++i)
         if (Number.isFinite(field[i])) { lo = Math.min(lo, field[i]); hi = Math.max(hi, field[i]); }
-      if (!(hi > lo)) { lo = Number.isFinite(lo) ? lo - 0.5 : 0; hi = lo + 1; }
+      if (!(hi > lo)) {
+        if (fromZero || !Number.isFinite(lo)) { lo = 0; hi = 1; } else { lo -= 0.5; hi = lo + 1; }
+      }
     }
     const g = this.mesh.geometry;
     g.attributes.position.array.set(f.pos.subarray(0, 3 * n));
@@ -406,12 +446,15 @@ class Viewer {
     this.scene.add(this.arrowLines);
   }
 
+  // The strip under the view: the species legend, or the colour bar with its two ends.
   colourBar(lo, hi) {
-    const bar = $('colourbar');
+    const strip = $('colourbar');
     if (this.mode === 'species') {
-      bar.style.display = 'block';
-      bar.innerHTML = this.info.species.map((s, k) =>
-        `<span style="color:${PALETTE[k % PALETTE.length]}">●</span> ${s.name} `).join('');
+      strip.replaceChildren(...this.info.species.map((s, k) => {
+        const swatch = element('span', 'swatch', '●');
+        swatch.style.color = PALETTE[k % PALETTE.length];
+        return element('span', 'species', swatch, element('span', 'name', String(s.name)));
+      }));
       return;
     }
     const stops = [];
@@ -421,10 +464,10 @@ class Viewer {
       stops.push(`#${c.getHexString(THREE.SRGBColorSpace)}`);
     }
     const [a, b] = this.mode !== 'angle' ? [lo.toPrecision(3), hi.toPrecision(3)] : ['−π', 'π'];
-    bar.style.display = 'block';
-    bar.innerHTML = escapeHtml(LABELS[this.mode] || this.mode) +
-      `<div class="bar" style="background:linear-gradient(to right,${stops.join(',')})"></div>` +
-      `<div class="ends"><span>${a}</span><span>${b}</span></div>`;
+    const bar = element('span', 'bar');
+    bar.style.background = `linear-gradient(to right, ${stops.join(', ')})`;
+    strip.replaceChildren(element('span', 'label', String(LABELS[this.mode] || this.mode)),
+      element('span', 'lo', a), bar, element('span', 'hi', b));
   }
 
   async setColour(mode) {
@@ -437,7 +480,17 @@ class Viewer {
     await this.show(this.index);
   }
 
+  // Following: each new frame of a run still going is shown as the page learns of it.
+  setFollow(on) {
+    this.follow = on;
+    $('follow').checked = on;
+    if (on && this.playing) this.play();
+    if (on) return this.show(this.frames - 1);
+    return Promise.resolve();
+  }
+
   async play() {
+    if (this.follow && !this.playing) this.setFollow(false);
     this.playing = !this.playing;
     $('play').textContent = this.playing ? '❚❚' : '▶';
     while (this.playing) {
@@ -453,8 +506,11 @@ class Viewer {
 
   // The CSS-pixel position of particle i's centre in the page (for tests).
   project(i) {
-    const p = new THREE.Vector3().fromBufferAttribute(this.mesh.geometry.attributes.position, i)
-      .project(this.camera);
+    return this.projectPoint(new THREE.Vector3().fromBufferAttribute(this.mesh.geometry.attributes.position, i));
+  }
+
+  projectPoint(point) {
+    const p = point.clone().project(this.camera);
     const rect = this.renderer.domElement.getBoundingClientRect();
     return { x: rect.left + ((p.x + 1) / 2) * rect.width, y: rect.top + ((1 - p.y) / 2) * rect.height };
   }
@@ -476,7 +532,7 @@ class LogPlot {
     const others = this.log.columns.filter((c) => c !== x && c !== 'step');
     if (select.options.length !== others.length) {
       const keep = select.value;
-      select.innerHTML = others.map((c) => `<option>${c}</option>`).join('');
+      select.replaceChildren(...others.map((c) => new Option(String(c), String(c))));
       const preferred = ['temperature', 'pressure', 'polar_order'].find((c) => others.includes(c));
       select.value = others.includes(keep) ? keep : (preferred || others[0] || '');
     }
@@ -519,7 +575,9 @@ class LogPlot {
 async function main() {
   let info = await fetchJson('api/info');
   // a run started with --view may not have written its first frame yet
+  let waited = false;
   while (info.frames === 0) {
+    waited = true;
     $('message').textContent = 'waiting for the run\'s first frame…';
     await new Promise((done) => setTimeout(done, 1000));
     info = await fetchJson('api/info');
@@ -532,14 +590,25 @@ async function main() {
   viewer.onFrame = () => { if (plot.plot) plot.plot.redraw(false); };
 
   const colour = $('colour');
-  colour.innerHTML = ['species', ...(info.colour_by || [])]
-    .map((m) => `<option value="${escapeHtml(m)}">${escapeHtml(LABELS[m] || m)}</option>`).join('');
+  colour.replaceChildren(...['species', ...(info.colour_by || [])]
+    .map((m) => new Option(String(LABELS[m] || m), String(m))));
   colour.addEventListener('change', () => viewer.setColour(colour.value).catch(report));
   $('arrows-label').style.display = info.fields.includes('director') ? '' : 'none';
   $('arrows').addEventListener('change', (e) => viewer.setArrows(e.target.checked).catch(report));
   const slider = $('slider');
   slider.max = String(info.frames - 1);
-  slider.addEventListener('input', () => viewer.show(Number(slider.value)).catch(report));
+  slider.addEventListener('input', () => {
+    if (viewer.follow) viewer.setFollow(false);
+    viewer.show(Number(slider.value)).catch(report);
+  });
+  // A run still going (pedesis run --view lists what it lets change; pedesis view reads its
+  // .part file; or the page waited for its first frame) is followed from the start: the
+  // page shows its newest frame and each new one, until the user scrubs, plays or unticks.
+  const live = !EXPORTED && (Array.isArray(info.steerable) || waited || /\.part\b/.test(String(info.source || '')));
+  $('follow-label').hidden = !!EXPORTED;
+  $('follow').addEventListener('change', (e) => viewer.setFollow(e.target.checked).catch(report));
+  viewer.follow = live;
+  $('follow').checked = live;
   $('play').addEventListener('click', () => viewer.play().catch(report));
   document.addEventListener('keydown', (e) => {
     if (e.code === 'Space' && e.target === document.body) { e.preventDefault(); viewer.play().catch(report); }
@@ -555,7 +624,7 @@ async function main() {
 
   if (info.steerable && info.steerable.length)
     steeringControls(info.steerable, new URLSearchParams(window.location.search).get('token'));
-  await viewer.show(0);
+  await viewer.show(viewer.follow ? info.frames - 1 : 0);
   await plot.refresh();
   // a run still going writes more frames and rows: look again now and then
   if (!EXPORTED) setInterval(async () => {
@@ -564,6 +633,7 @@ async function main() {
       if (now.frames !== viewer.frames) {
         viewer.frames = now.frames;
         slider.max = String(now.frames - 1);
+        if (viewer.follow) await viewer.show(now.frames - 1);
         await plot.refresh();
       }
     } catch (e) { /* the server has stopped: keep what is shown */ }
@@ -588,6 +658,8 @@ async function main() {
         .getHexString(THREE.SRGBColorSpace);
     },
     project: (i) => viewer.project(i),
+    projectPoint: (x, y, z) => viewer.projectPoint(new THREE.Vector3(x, y, z)),
+    following: () => viewer.follow,
     logPoints: () => (plot.plot ? plot.plot.data[0].length : 0),
     renderNow: () => viewer.render(),
     // For scripts/bench_viewer.mjs: milliseconds per drawn frame over `count` redraws with
@@ -623,24 +695,54 @@ async function main() {
 // is sent with the address's token and applies from the run's next step.
 function steeringControls(parameters, token) {
   const box = $('steer');
-  box.innerHTML = '<h3>change the run</h3>' + (token ? ''
-    : '<p>read-only: open the address <code>pedesis run --view</code> printed (with its token) to change the run</p>');
-  for (const { name, value } of parameters) {
-    // a restitution coefficient lies in [0, 1]; the others may grow well past their start
-    const top = name.endsWith('restitution') ? 1 : Math.max(4 * Math.abs(value), 1);
-    const lo = name === 'J' ? -top : 0;
-    const row = document.createElement('label');
-    row.innerHTML = `${name} <input type="range" id="steer-${name}" min="${lo}" max="${top}" ` +
-      `step="${top / 200}" value="${value}" ${token ? '' : 'disabled'}> <output>${value}</output>`;
-    box.appendChild(row);
-    const input = row.querySelector('input'), shown = row.querySelector('output');
-    input.addEventListener('input', () => { shown.textContent = input.value; });
-    input.addEventListener('change', async () => {
+  box.replaceChildren(element('h3', '', 'change the run'));
+  if (!token)
+    box.append(element('p', '', 'read-only: open the address ', element('code', '', 'pedesis run --view'),
+      ' printed (with its token) to change the run'));
+  for (const { name: rawName, value, min, max } of parameters) {
+    const name = String(rawName);
+    // The slider spans a practical range: a restitution coefficient [0, 1], J [-top, top],
+    // another parameter [0, top], top 4 times its start (at least 1), each cut to the
+    // range the server allows (/api/info's min and max, where it gives them). The number
+    // box beside it takes any value of the allowed range, and the slider widens to it.
+    const allowedLo = Number.isFinite(min) ? min : -Infinity;
+    const allowedHi = Number.isFinite(max) ? max : Infinity;
+    const guess = name.endsWith('restitution') ? 1 : Math.max(4 * Math.abs(value), 1);
+    const hi = Math.min(guess, allowedHi);
+    const lo = Math.max(name === 'J' ? -guess : 0, allowedLo);
+    const slider = document.createElement('input');
+    Object.assign(slider, { type: 'range', id: `steer-${name}`, disabled: !token });
+    const setRange = (a, b) => Object.assign(slider, { min: String(a), max: String(b), step: String((b - a) / 200) });
+    setRange(lo, hi > lo ? hi : lo + 1);
+    slider.value = String(value);
+    const exact = document.createElement('input');
+    Object.assign(exact, { type: 'number', className: 'exact', step: 'any', value: String(value), disabled: !token });
+    if (Number.isFinite(allowedLo)) exact.min = String(allowedLo);
+    if (Number.isFinite(allowedHi)) exact.max = String(allowedHi);
+    box.append(element('label', '', `${name} `, slider, ' ', exact));
+    const send = async (v) => {
       const r = await fetch('api/set', { method: 'POST', headers: { 'Content-Type': 'application/json' },
-        body: JSON.stringify({ token, parameter: name, value: Number(input.value) }) });
+        body: JSON.stringify({ token, parameter: name, value: v }) });
       const answer = await r.json().catch(() => ({}));
-      $('steer-status').textContent = r.ok ? `${name} = ${input.value} from the next step`
+      $('steer-status').textContent = r.ok ? `${name} = ${v} from the next step`
         : `refused: ${answer.error || r.status}`;
+    };
+    slider.addEventListener('input', () => { exact.value = slider.value; });
+    slider.addEventListener('change', () => {
+      exact.value = slider.value;
+      send(Number(slider.value)).catch(report);
+    });
+    exact.addEventListener('change', () => {
+      const v = Number(exact.value);
+      if (exact.value === '' || !Number.isFinite(v) || !exact.checkValidity()) {
+        $('steer-status').textContent = `${name}: a number${Number.isFinite(allowedLo) ? ` from ${allowedLo}` : ''}` +
+          `${Number.isFinite(allowedHi) ? ` to ${allowedHi}` : ''}`;
+        return;
+      }
+      if (v < Number(slider.min) || v > Number(slider.max))
+        setRange(Math.min(v, Number(slider.min)), Math.max(v, Number(slider.max)));
+      slider.value = String(v);
+      send(v).catch(report);
     });
   }
   const status = document.createElement('p');
