@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target of a `make fuzz` build for SECONDS each (or, with RUNS set in
 # the environment, for exactly that many inputs from seed 1: the same inputs every time,
-# which is what CI runs; fuzz_run, whose every input is a whole simulation, gets a quarter
-# of them), from the seed corpus in fuzz/corpus/<target>/ (new inputs go to a scratch
+# which is what CI runs; fuzz_run and fuzz_view_request, whose every input is a whole
+# simulation or two connections to a server, get a quarter of them), from the seed corpus
+# in fuzz/corpus/<target>/ (new inputs go to a scratch
 # copy, the repository's corpus is not touched). JOBS targets run side by side (default:
 # the number of cores; each is single-threaded). Exit 1 if any target finds a crash, a
 # leak, a sanitizer report or a timeout; the input that did it is left as
@@ -23,7 +24,8 @@ run_target() {
   cp "$root/fuzz/corpus/$target/"* "$corpus/"
   if [ -n "${RUNS:-}" ]; then
     local runs=$RUNS
-    if [ "$target" = fuzz_run ]; then runs=$((RUNS / 4)); fi
+    # (each input of these is a whole run, or two connections to a server)
+    case $target in fuzz_run | fuzz_view_request) runs=$((RUNS / 4)) ;; esac
     budget=(-runs="$runs" -seed=1)
   else
     budget=(-max_total_time="$seconds")
@@ -43,6 +45,8 @@ run_target() {
 }
 
 targets=(fuzz_checkpoint fuzz_run fuzz_config fuzz_tutorial_json fuzz_xyz fuzz_gsd fuzz_sweep)
+# the viewer's server, in builds that have it (PEDESIS_GRAPHICS)
+if [ -x "$build/fuzz/fuzz_view_request" ]; then targets=(fuzz_view_request "${targets[@]}"); fi
 # the longest first, so that the two cores finish together
 running=0
 for target in "${targets[@]}"; do

@@ -60,7 +60,13 @@ class LiveView {
         if (desk) {
             token_ = random_token();
             o.steering = view::SteeringHooks{
-                token_, [desk] { return desk->parameters(); },
+                token_,
+                [desk] {
+                    std::vector<view::SteerableValue> out;
+                    for (const SteerableParameter& p : desk->parameters())
+                        out.push_back({p.name, p.value, p.min, p.max});
+                    return out;
+                },
                 [desk](const std::string& p, double v) { return desk->request(p, v); }};
         }
         server_ = std::make_unique<view::ViewServer>(o);
@@ -180,8 +186,14 @@ void add_run_command(CLI::App& app) {
         {
             // from the first step to the steering record's close, a signal stops cleanly
             const CleanStopWindow window;
-            if (desk) desk->replay_until_done();
-            run->run();
+            try {
+                if (desk) desk->replay_until_done();
+                run->run();
+            } catch (const RunError& e) {
+                // a blow-up after a change: say which (the page may have asked for it)
+                if (desk) throw RunError(e.what() + desk->failure_note());
+                throw;
+            }
             if (desk) desk->run_ended();
         }
         if (live && guard.signal() == 0) {

@@ -55,10 +55,19 @@ std::vector<SteeringChange> read_steering(const std::filesystem::path& file) {
     return out;
 }
 
+std::pair<double, double> steering_range(const std::string& parameter, double start) {
+    constexpr double widest = 1e6;
+    if (parameter == "restitution" || parameter == "wall_restitution") return {0.0, 1.0};
+    const double scale = start != 0.0 && std::isfinite(start) ? widest * std::abs(start) : widest;
+    if (parameter == "temperature") return {0.0, scale};
+    return {-scale, scale};
+}
+
 SteeringDesk::SteeringDesk(Run& run, std::filesystem::path record,
                            std::vector<SteeringChange> replay)
     : run_(run), record_path_(std::move(record)), replay_(std::move(replay)),
       values_(run.steerable()) {
+    for (const auto& [name, start] : values_) ranges_.push_back(steering_range(name, start));
     for (const SteeringChange& c : replay_)
         if (std::none_of(values_.begin(), values_.end(),
                          [&](const auto& v) { return v.first == c.parameter; }))
@@ -82,34 +91,48 @@ SteeringDesk::~SteeringDesk() {
 }
 
 void SteeringDesk::run_ended() {
-    std::lock_guard lock(mutex_);
-    ended_ = true;
+    {
+        std::lock_guard lock(mutex_);
+        ended_ = true;
+    }
+    write_record();
+    if (record_) record_->commit();
+    record_.reset();
 }
 
 std::string SteeringDesk::request(const std::string& parameter, double value) {
     std::lock_guard lock(mutex_);
     if (ended_) return "the run has ended: nothing changes any more";
-    const bool known = std::any_of(values_.begin(), values_.end(),
-                                   [&](const auto& v) { return v.first == parameter; });
-    if (!known) {
+    const auto known = std::find_if(values_.begin(), values_.end(),
+                                    [&](const auto& v) { return v.first == parameter; });
+    if (known == values_.end()) {
         std::string names;
         for (const auto& v : values_) names += (names.empty() ? "" : ", ") + v.first;
         return fmt::format("unknown parameter '{}' (this run has: {})", parameter,
                            names.empty() ? "none" : names);
     }
+    const auto [lo, hi] = ranges_[static_cast<std::size_t>(known - values_.begin())];
     if (!std::isfinite(value)) return "the value must be a finite number";
-    if (parameter == "temperature" && value < 0.0)
-        return fmt::format("temperature must be >= 0 (got {})", value);
-    if ((parameter == "restitution" || parameter == "wall_restitution") &&
-        !(value >= 0.0 && value <= 1.0))
-        return fmt::format("{} must lie in [0, 1] (got {})", parameter, value);
+    if (!(value >= lo && value <= hi))
+        return fmt::format("{} must lie in [{}, {}] (got {})", parameter, lo, hi, value);
     requests_.emplace_back(parameter, value);
     return "";
 }
 
-std::vector<std::pair<std::string, double>> SteeringDesk::parameters() const {
+std::vector<SteerableParameter> SteeringDesk::parameters() const {
     std::lock_guard lock(mutex_);
-    return values_;
+    std::vector<SteerableParameter> out;
+    for (std::size_t k = 0; k < values_.size(); ++k)
+        out.push_back({values_[k].first, values_[k].second, ranges_[k].first, ranges_[k].second});
+    return out;
+}
+
+std::string SteeringDesk::failure_note() const {
+    if (!last_applied_) return "";
+    const SteeringChange& c = *last_applied_;
+    return fmt::format(" (after the change of {} to {} at step {}, t = {:.6g}; steering.csv "
+                       "records every change)",
+                       c.parameter, c.value, c.step, c.time);
 }
 
 void SteeringDesk::apply(const SteeringChange& c) {
@@ -119,6 +142,7 @@ void SteeringDesk::apply(const SteeringChange& c) {
         for (auto& v : values_)
             if (v.first == c.parameter) v.second = c.value;
     }
+    last_applied_ = c;
     unwritten_ += fmt::format("{},{},{},{}\n", c.step, c.time, c.parameter, c.value);
 }
 

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +34,19 @@ struct SteeringChange {
 // A record as steering.csv holds it; InputError naming the file and line.
 std::vector<SteeringChange> read_steering(const std::filesystem::path& file);
 
+// A parameter as the page shows it: its value now and what a change may set it to.
+struct SteerableParameter {
+    std::string name;
+    double value = 0.0;
+    double min = 0.0, max = 0.0;
+};
+
+// What a change may set a parameter to, from its value at the start: a restitution lies in
+// [0, 1]; a temperature in [0, 10^6 x its start] (10^6 where it started at 0); alpha and
+// J, whose sign is physical (swimming backwards, anti-alignment), within +-10^6 x their
+// start (or 10^6). Wider changes only blow a run up: its dt was chosen for the start.
+std::pair<double, double> steering_range(const std::string& parameter, double start);
+
 class SteeringDesk {
   public:
     // `record`: where to write the changes applied (empty: nowhere); `replay`: changes
@@ -42,13 +56,17 @@ class SteeringDesk {
     ~SteeringDesk(); // commits the record: every row in it is whole
 
     // From any thread (the viewer's server): queues a change for the next step, or says
-    // why not ("" when queued). Refused: unknown parameters, non-finite values, negative
-    // temperatures.
+    // why not ("" when queued). Refused: unknown parameters, values outside
+    // steering_range (non-finite ones included).
     std::string request(const std::string& parameter, double value);
-    // After the run has ended, every request is refused (the page may stay open).
+    // After the run has ended, every request is refused (the page may stay open), and the
+    // record is committed under its final name.
     void run_ended();
-    // The parameters and their values as last applied, from any thread.
-    std::vector<std::pair<std::string, double>> parameters() const;
+    // The parameters, their values as last applied and their ranges, from any thread.
+    std::vector<SteerableParameter> parameters() const;
+    // For a run that failed: " (after the change of <parameter> to <value> at step S, t
+    // = T)", naming the last change applied, or "" where none was.
+    std::string failure_note() const;
 
     // From the run's thread between steps (an every-step operation of the run): applies
     // the replayed changes of this step, then the requests queued since the last call,
@@ -74,6 +92,8 @@ class SteeringDesk {
     mutable std::mutex mutex_; // requests_, values_ and ended_
     std::deque<std::pair<std::string, double>> requests_;
     std::vector<std::pair<std::string, double>> values_;
+    std::vector<std::pair<double, double>> ranges_; // values_'s, from their start
+    std::optional<SteeringChange> last_applied_;
     bool ended_ = false;
 };
 

@@ -3,6 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/render/run_directory.hpp"
 #include "pedesis/view/frame_arrays.hpp"
+#include "pedesis/view/guarded_http_server.hpp"
 #include "pedesis/view/page_files.hpp"
 #include "pedesis/view/run_data.hpp"
 
@@ -10,10 +11,17 @@
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
+#include <arpa/inet.h>
+
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <fstream>
+#include <iostream>
 #include <mutex>
+#include <regex>
 #include <sstream>
 #include <thread>
 #include <utility>
@@ -26,16 +34,64 @@ namespace {
 // the frames around its cursor.
 constexpr std::size_t cached_frames = 8;
 
+// Names, paths and messages from files and requests may hold any bytes: invalid UTF-8
+// becomes U+FFFD instead of an exception.
+std::string json_text(const nlohmann::json& j) {
+    return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 void send_error(httplib::Response& res, int status, const std::string& message) {
     res.status = status;
-    res.set_content(nlohmann::json{{"error", message}}.dump(), "application/json");
+    res.set_content(json_text(nlohmann::json{{"error", message}}), "application/json");
+}
+
+// What the page and the API answer to, and with which methods (for 405's Allow).
+struct Route {
+    const char* pattern;
+    const char* method;
+};
+constexpr Route routes_served[] = {
+    {R"(/api/info)", "GET"},
+    {R"(/api/log)", "GET"},
+    {R"(/api/set)", "POST"},
+    {R"(/api/frame/(\d{1,18})/([^/]{1,200}))", "GET"},
+    {R"(/(|index\.html|viewer\.js|viewer\.css|favicon\.ico))", "GET"},
+};
+
+// A request's path in a message: printable, and short.
+std::string shown_path(const std::string& path) {
+    constexpr std::size_t longest = 120;
+    return path.size() <= longest ? path : path.substr(0, longest) + "...";
+}
+
+// "name" and port of a Host header ("name:port", "[v6]:port"); port 80 without one.
+std::pair<std::string, std::string> split_host(const std::string& host) {
+    const std::size_t colon = host.rfind(':');
+    const std::size_t bracket = host.rfind(']');
+    if (colon == std::string::npos || (bracket != std::string::npos && colon < bracket))
+        return {host, "80"};
+    return {host.substr(0, colon), host.substr(colon + 1)};
+}
+
+bool is_ip_literal(std::string name) {
+    if (name.size() > 2 && name.front() == '[' && name.back() == ']')
+        name = name.substr(1, name.size() - 2);
+    unsigned char buffer[sizeof(in6_addr)];
+    return ::inet_pton(AF_INET, name.c_str(), buffer) == 1 ||
+           ::inet_pton(AF_INET6, name.c_str(), buffer) == 1;
+}
+
+std::string lower(std::string s) {
+    for (char& c : s)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return s;
 }
 
 } // namespace
 
 struct ViewServer::Impl {
     ViewOptions options;
-    httplib::Server server;
+    GuardedHttpServer server;
     std::thread serving;
     int port = 0;
     std::mutex mutex; // the frame source and cache (the server answers on several threads)
@@ -76,8 +132,8 @@ struct ViewServer::Impl {
         if (!options.steering) return info;
         nlohmann::json& list = info["steerable"];
         list = nlohmann::json::array();
-        for (const auto& [name, value] : options.steering->parameters())
-            list.push_back({{"name", name}, {"value", value}});
+        for (const auto& [name, value, min, max] : options.steering->parameters())
+            list.push_back({{"name", name}, {"value", value}, {"min", min}, {"max", max}});
         return info;
     }
 
@@ -103,7 +159,7 @@ struct ViewServer::Impl {
         const std::string refused = options.steering->request(parameter, value);
         if (!refused.empty()) return send_error(res, 400, refused);
         res.status = 202;
-        res.set_content(nlohmann::json{{"queued", parameter}, {"value", value}}.dump(),
+        res.set_content(json_text(nlohmann::json{{"queued", parameter}, {"value", value}}),
                         "application/json");
     }
 
@@ -111,33 +167,132 @@ struct ViewServer::Impl {
         server.Get("/api/info", [this](const httplib::Request&, httplib::Response& res) {
             std::lock_guard lock(mutex);
             try {
-                res.set_content(info().dump(), "application/json");
+                res.set_content(json_text(info()), "application/json");
             } catch (const InputError& e) {
                 send_error(res, 422, e.what());
             }
         });
         server.Get("/api/log", [this](const httplib::Request&, httplib::Response& res) {
-            res.set_content(read_log(options.run_dir).dump(), "application/json");
+            res.set_content(json_text(read_log(options.run_dir)), "application/json");
         });
-        server.Get(R"(/api/frame/(\d{1,18})/([^/]{1,200}))",
+        server.Get(routes_served[3].pattern,
                    [this](const httplib::Request& req, httplib::Response& res) {
                        answer_frame(req, res);
                    });
         server.Post("/api/set", [this](const httplib::Request& req, httplib::Response& res) {
             answer_set(req, res);
         });
-        server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
-            if (res.body.empty())
-                send_error(res, res.status, fmt::format("no such resource: {}", req.path));
+        server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+            const std::string refused = refusal(req);
+            if (refused.empty()) return httplib::Server::HandlerResponse::Unhandled;
+            send_error(res, 403, refused);
+            return httplib::Server::HandlerResponse::Handled;
         });
-        if (!page_file("index.html")) throw InputError(page_missing());
+        server.set_error_handler([this](const httplib::Request& req, httplib::Response& res) {
+            if (res.body.empty()) explain_status(req, res);
+        });
+        server.set_exception_handler(
+            [](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
+                std::string what = "unknown";
+                try {
+                    std::rethrow_exception(error);
+                } catch (const std::exception& e) {
+                    what = e.what();
+                } catch (...) {
+                }
+                send_error(res, 500, "internal error: " + what);
+            });
+        if (options.require_page && !page_file("index.html")) throw InputError(page_missing());
         // the page, from the binary (page_files.hpp)
-        server.Get(R"(/(|index\.html|viewer\.js|viewer\.css))",
-                   [](const httplib::Request& req, httplib::Response& res) {
-                       const std::string name = req.matches[1].str();
-                       const PageFile file = *page_file(name.empty() ? "index.html" : name);
-                       res.set_content(file.bytes.data(), file.bytes.size(), file.content_type);
-                   });
+        server.Get(
+            routes_served[4].pattern, [](const httplib::Request& req, httplib::Response& res) {
+                const std::string name = req.matches[1].str();
+                const std::optional<PageFile> file = page_file(name.empty() ? "index.html" : name);
+                if (!file)
+                    return send_error(res, 404,
+                                      name.empty() || name == "index.html"
+                                          ? page_missing()
+                                          : "this page has no " + name);
+                res.set_header("Content-Security-Policy", std::string(page_security_policy()));
+                res.set_content(file->bytes.data(), file->bytes.size(), file->content_type);
+            });
+    }
+
+    // The addresses a request may name in its Host header: those the server was started
+    // on. A page on any other name that resolves here (DNS rebinding) is refused.
+    std::vector<std::string> own_hosts;
+    bool any_address = false; // listening on 0.0.0.0 or ::
+
+    void name_own_hosts() {
+        const std::string p = std::to_string(port);
+        const std::string& h = options.host;
+        own_hosts = {"127.0.0.1:" + p, "localhost:" + p, "[::1]:" + p,
+                     lower(h.find(':') != std::string::npos ? "[" + h + "]:" + p : h + ":" + p)};
+        any_address = h == "0.0.0.0" || h == "::" || h == "[::]";
+    }
+
+    bool own_host(const std::string& host) const {
+        const std::string wanted = lower(host);
+        for (const std::string& h : own_hosts)
+            if (wanted == h) return true;
+        if (!any_address) return false;
+        // listening everywhere: this machine's addresses (literals) and names
+        const auto [name, p] = split_host(wanted);
+        if (p != std::to_string(port)) return false;
+        char machine[256] = {};
+        ::gethostname(machine, sizeof machine - 1);
+        return is_ip_literal(name) || name == "localhost" || name == lower(machine);
+    }
+
+    // Why a request is refused before it is routed, or "".
+    std::string refusal(const httplib::Request& req) const {
+        const std::string host = req.get_header_value("Host");
+        if (!own_host(host))
+            return fmt::format("this server answers to {} only, not to Host '{}'", own_hosts[0],
+                               shown_path(host));
+        // a page of another origin may open the viewer (a link), never read or change it
+        const std::string origin = req.get_header_value("Origin");
+        if (req.has_header("Origin") && lower(origin) != "http://" + lower(host))
+            return fmt::format("requests from another origin ('{}') are refused",
+                               shown_path(origin));
+        const std::string site = req.get_header_value("Sec-Fetch-Site");
+        const bool navigation = req.get_header_value("Sec-Fetch-Mode") == "navigate" &&
+                                req.method == "GET" &&
+                                (req.path == "/" || req.path == "/index.html");
+        if ((site == "cross-site" || site == "same-site") && !navigation)
+            return "requests from another site are refused (open the page itself)";
+        return "";
+    }
+
+    // The message of a status the server library chose (a request it could not read, or
+    // no route), and the status that says it where the library's is too vague.
+    void explain_status(const httplib::Request& req, httplib::Response& res) const {
+        const ConnectionLimits& limits = server.limits();
+        if (const auto cut = request_cut_short(limits))
+            return send_error(res, cut->status, cut->message);
+        if (res.status == 404) {
+            std::string allowed;
+            for (const Route& r : routes_served)
+                if (std::regex_match(req.path, std::regex(r.pattern)))
+                    allowed += (allowed.empty() ? "" : ", ") + std::string(r.method);
+            if (!allowed.empty()) {
+                res.set_header("Allow", allowed);
+                return send_error(res, 405,
+                                  fmt::format("{} takes {} only, not {}", shown_path(req.path),
+                                              allowed, shown_path(req.method)));
+            }
+            return send_error(res, 404, "no such resource: " + shown_path(req.path));
+        }
+        if (res.status == 413)
+            return send_error(
+                res, 413, fmt::format("the request's body exceeds {} bytes", limits.body_bytes));
+        if (res.status == 414)
+            return send_error(res, 414, "the request line is longer than 8192 bytes");
+        if (res.status == 400) {
+            close_after_answer();
+            return send_error(res, 400, "malformed HTTP request");
+        }
+        send_error(res, res.status, fmt::format("HTTP status {}", res.status));
     }
 
     // A structural field (position, radius, species, director) or a number to colour by
@@ -180,6 +335,9 @@ struct ViewServer::Impl {
 
 ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl>()) {
     impl_->options = options;
+    if (options.host.empty())
+        throw InputError("pedesis view: --host must name an address (127.0.0.1, this "
+                         "machine's name, or 0.0.0.0 for every address)");
     if (!options.wait_for_frames)
         impl_->source =
             render::open_run_directory(options.run_dir, render::SourceKind::automatic).source;
@@ -192,6 +350,8 @@ ViewServer::ViewServer(const ViewOptions& options) : impl_(std::make_unique<Impl
         throw InputError(fmt::format("pedesis view: cannot listen on {}:{} (in use, or not an "
                                      "address of this machine); choose another with --port",
                                      options.host, options.port));
+    impl_->server.widen_listen_queue();
+    impl_->name_own_hosts();
 }
 
 ViewServer::~ViewServer() {
@@ -213,7 +373,16 @@ std::string ViewServer::url() const {
 
 void ViewServer::start() {
     if (!impl_->serving.joinable())
-        impl_->serving = std::thread([this] { impl_->server.listen_after_bind(); });
+        impl_->serving = std::thread([this] {
+            // The server's end never takes a run down with it: say so and let it go on.
+            try {
+                impl_->server.listen_after_bind();
+            } catch (const std::exception& e) {
+                std::cerr << fmt::format("pedesis: the viewer's server stopped ({}); the run "
+                                         "goes on\n",
+                                         e.what());
+            }
+        });
 }
 
 } // namespace pedesis::view

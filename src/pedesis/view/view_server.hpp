@@ -11,8 +11,12 @@
 //                              simulation (only with SteeringHooks): 202, or 403 for a
 //                              wrong token, 400 for anything else wrong
 //
-// A frame past the end, an unknown field, or one the run's files do not store is a 4xx
-// with a JSON {"error": message}.
+// A frame past the end, a field the frames do not have, or an unknown path is a 404 with a
+// JSON {"error": message}; so is every other refusal, with its own status (docs/view.md,
+// "Statuses"). The server guards the run it serves: requests are bounded in size and
+// time (guarded_http_server.hpp), only the addresses it listens on are served (a
+// DNS-rebinding page gets 403), cross-site requests other than opening the page are
+// refused, and nothing a client sends can stop the process.
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -26,9 +30,15 @@ namespace pedesis::view {
 // What `pedesis run --view` lets the page change: the run's parameters and a way to ask
 // for a change (run/steering.hpp's SteeringDesk, as plain functions: the server knows
 // nothing of runs), guarded by a random token that only the printed address carries.
+struct SteerableValue {
+    std::string name;
+    double value = 0.0;
+    double min = 0.0, max = 0.0; // what a change may set it to
+};
+
 struct SteeringHooks {
     std::string token;
-    std::function<std::vector<std::pair<std::string, double>>()> parameters;
+    std::function<std::vector<SteerableValue>()> parameters;
     std::function<std::string(const std::string&, double)> request; // "" when queued
 };
 
@@ -40,12 +50,15 @@ struct ViewOptions {
     // waits for the first frame. Otherwise a directory without one is an InputError.
     bool wait_for_frames = false;
     std::optional<SteeringHooks> steering;
+    // Refuse to start without the page (a build without Node.js): the command does; a
+    // client of the API alone (the fuzz target) need not.
+    bool require_page = true;
 };
 
 class ViewServer {
   public:
     // Opens the run's trajectory and binds the port; InputError (naming the directory,
-    // or the port and --port) if either fails.
+    // or the port and --port) if either fails, or if the host is empty.
     explicit ViewServer(const ViewOptions& options);
     ~ViewServer();
     ViewServer(const ViewServer&) = delete;
