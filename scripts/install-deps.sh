@@ -11,6 +11,7 @@ packages=(
   libcairo2-dev ffmpeg python3-matplotlib
   python3-dev pybind11-dev python3-pytest
   python3-ase python3-vtk9 zlib1g-dev
+  python3-nbclient python3-ipykernel python3-nbconvert python3-nbformat
   clang
   libopenmpi-dev openmpi-bin
   libcpp-httplib-dev libssl-dev chromium

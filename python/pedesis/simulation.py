@@ -79,8 +79,24 @@ class Simulation:
         import os
         if out is None:
             out = os.path.join("runs", os.path.splitext(os.path.basename(str(config)))[0])
-        return cls(_pedesis._Run(str(config), str(out), None if restart is None else
-                                 str(restart), quiet))
+        sim = cls(_pedesis._Run(str(config), str(out), None if restart is None else
+                                str(restart), quiet))
+        sim.out_dir = out
+        return sim
+
+    out_dir = None  # the run directory (from_file's out)
+
+    def _repr_html_(self):
+        """A notebook cell ending with the simulation shows its run directory as it is
+        now: the frames written so far (pedesis.show); before the first frame, the usual
+        text."""
+        from .show import show
+        if self.out_dir is None:
+            return None
+        try:
+            return show(self)._repr_html_()
+        except (FileNotFoundError, RuntimeError):
+            return None  # (nothing to draw yet: IPython falls back to repr)
 
     def _add_writer(self, w):
         formats = {GSDWriter: "gsd", XYZWriter: "xyz"}
