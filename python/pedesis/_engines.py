@@ -1,6 +1,8 @@
 """The compiled engines as the package shows them: the classes of _pedesis, one Plugin
 subclass per catalogue entry, Dump. pedesis/__init__.py imports everything here."""
+import functools as _functools
 import inspect as _inspect
+import warnings as _warnings
 
 from . import _pedesis
 from ._pedesis import Evolver, Gas, InputError, Plugin, RunError, System
@@ -10,7 +12,7 @@ __all__ = [
     "System", "Evolver", "Dump", "Gas", "Plugin", "InputError", "RunError",
     "HarmonicForce", "WcaForce", "LjForce", "SelfPropulsion", "PolarAlign", "BrownianIntegrator",
     "BrownianRotIntegrator", "LangevinIntegrator", "NVEIntegrator",
-    "Simulation", "Periodic", "GSDWriter", "XYZWriter", "Callback",
+    "Simulation", "Periodic", "GSDWriter", "XYZWriter", "Callback", "StopName",
 ]
 
 def _plugin_class(entry):
@@ -93,3 +95,46 @@ class Dump:  # (pedesis.Dump)
         """Writes the state in the ABP tutorial's JSON layout."""
         self.system.write_json(path)
 
+
+
+# The names Gas.run returned before it took those of `pedesis run` (summary.json's
+# stopped_by), with the name each became (issue 28).
+_RENAMED_STOPS = {"no_events": "no more events", "energy": "energy_fraction"}
+
+
+class StopName(str):
+    """The stop condition a run met, by the name `pedesis run` writes as summary.json's
+    "stopped_by": "time", "collisions_per_particle", "steps", "energy_fraction",
+    "no more events", "grown". A plain str, except that it also equals the names
+    Gas.run returned before, "no_events" and "energy", with a DeprecationWarning, so
+    that scripts comparing against them keep working until they change."""
+
+    __slots__ = ()
+
+    def __eq__(self, other):
+        same = str.__eq__(self, other)
+        if same is NotImplemented or same:
+            return same
+        if isinstance(other, str) and _RENAMED_STOPS.get(str(other)) == str(self):
+            _warnings.warn(f"Gas.run: the stop name {str(other)!r} is deprecated; it is "
+                           f"{str(self)!r} now, as in summary.json's stopped_by",
+                           DeprecationWarning, stacklevel=2)
+            return True
+        return False
+
+    def __ne__(self, other):
+        same = self.__eq__(other)
+        return same if same is NotImplemented else not same
+
+    # a dict or set keyed by the new names finds it; the old names only compare equal
+    __hash__ = str.__hash__
+
+
+def _named_stops(run):
+    @_functools.wraps(run)
+    def wrapped(self, *args, **kwargs):
+        return StopName(run(self, *args, **kwargs))
+    return wrapped
+
+
+Gas.run = _named_stops(Gas.run)

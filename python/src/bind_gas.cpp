@@ -90,9 +90,12 @@ copies in tag order.
             py::arg("steps") = py::none(), R"doc(
 Advances until the simulated time reaches `time`, the pair collisions since t = 0
 reach collisions_per_particle * N, or (stepped engine) `steps` more steps were taken,
-whichever comes first; returns which ("time", "collisions_per_particle", "steps",
-"no_events"). The GIL is released; Ctrl-C stops at the next step (stepped) or within
-a few thousand collisions (event), with the gas in a valid state.
+whichever comes first; returns which, by the names summary.json's "stopped_by" uses:
+"time", "collisions_per_particle", "steps", "no more events" (nothing moves), or
+"grown" (Lubachevsky-Stillinger growth has ended). The result is a pedesis.StopName,
+which also equals the earlier names "no_events" and "energy" (deprecated: a
+DeprecationWarning). The GIL is released; Ctrl-C stops at the next step (stepped) or
+within a few thousand collisions (event), with the gas in a valid state.
 )doc")
         .def_property_readonly(
             "dynamics", [](const PyGas& g) { return g.model->dynamics(); },

@@ -166,10 +166,13 @@ template <int D> class EventGas final : public Gas<D, EventEngine<D>> {
         switch (this->engine_->run(l)) {
         case StopReason::collisions:
             return "collisions_per_particle";
+        // the names of `pedesis run` (summary.json's stopped_by, event_run.cpp), so that a
+        // script and a run directory say the same; python/pedesis/_engines.py keeps the
+        // earlier "no_events" and "energy" comparing equal, with a DeprecationWarning
         case StopReason::no_events:
-            return "no_events";
+            return "no more events";
         case StopReason::energy:
-            return "energy";
+            return "energy_fraction";
         case StopReason::grown:
             return "grown"; // run again to go on at these radii
         case StopReason::time:

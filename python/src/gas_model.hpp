@@ -28,8 +28,8 @@ class GasModel {
     virtual std::size_t size() const = 0;
     // Advances through the one run loop (run/simulation.hpp), without a run directory,
     // until the first limit is met or a caught signal (core/interrupt.hpp) stops it.
-    // Returns the reason: "time", "collisions_per_particle", "steps", "no_events",
-    // "energy", "grown".
+    // Returns the reason, by the names summary.json's stopped_by uses: "time",
+    // "collisions_per_particle", "steps", "no more events", "energy_fraction", "grown".
     virtual std::string run(const GasLimits& limits) = 0;
     // Copies in tag order (the event engine moves particles lazily: its own arrays hold
     // each particle at its last event, so there is nothing to view).

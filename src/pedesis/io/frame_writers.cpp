@@ -33,6 +33,15 @@ FrameWriters<D>::FrameWriters(const std::filesystem::path& dir,
         if (f == "xyz" && !xyz_) xyz_ = std::make_unique<AtomicAppendFile>(dir / "trajectory.xyz");
         if (f == "gsd" && !gsd_) gsd_ = std::make_unique<GsdWriter<D>>(dir / "trajectory.gsd");
     }
+    // snapshots/ only for the formats that write there: an empty folder in a run
+    // directory looks like frames that went missing (issue 28)
+    if (vtp_ || json_ || table_) {
+        std::error_code ec;
+        std::filesystem::create_directories(dir / "snapshots", ec);
+        if (ec)
+            throw InputError((dir / "snapshots").string() +
+                             ": cannot create the snapshot directory: " + ec.message());
+    }
 }
 
 template <int D> void FrameWriters<D>::write(const Frame<D>& f, std::uint64_t frame_number) {

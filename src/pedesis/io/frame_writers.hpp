@@ -27,7 +27,8 @@ std::string frame_format_list();
 template <int D> class FrameWriters {
   public:
     // Starts the trajectories of `formats` (each one of frame_formats) in `dir`, removing
-    // earlier ones there. Throws InputError for an unknown format.
+    // earlier ones there, and creates dir/snapshots only if a format writes there. Throws
+    // InputError for an unknown format.
     FrameWriters(const std::filesystem::path& dir, const std::vector<std::string>& formats);
 
     void write(const Frame<D>& f, std::uint64_t frame_number);

@@ -1,7 +1,8 @@
 #pragma once
-// What every run driver does first with its output directory: create it (with
-// snapshots/), remove results of an earlier run there that must not pass for this
-// run's, and keep a copy of the config beside the results.
+// What every run driver does first with its output directory: create it (snapshots/ is
+// FrameWriters', made only for the formats that write there), remove results of an
+// earlier run there that must not pass for this run's, and keep a copy of the config
+// beside the results.
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
 
@@ -16,7 +17,7 @@ inline void prepare_run_directory(const std::filesystem::path& out_dir,
                                   const std::filesystem::path& config_path,
                                   const std::vector<const char*>& stale_results) {
     std::error_code ec;
-    std::filesystem::create_directories(out_dir / "snapshots", ec);
+    std::filesystem::create_directories(out_dir, ec);
     if (ec)
         throw InputError(out_dir.string() + ": cannot create output directory: " + ec.message());
     for (const char* stale : stale_results) std::filesystem::remove(out_dir / stale, ec);

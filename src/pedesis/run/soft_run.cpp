@@ -184,7 +184,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             book_.sum_polar_order += m.order;
             book_.sum_temperature += m.temperature;
         }
-        progress(m.order, pressure);
+        progress(m, pressure);
     }
 
     void start(bool fresh) override {
@@ -265,11 +265,29 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                                 state_.step, state_.time, j["wall_seconds"].template get<double>(),
                                 j["particle_steps_per_second"].template get<double>(),
                                 evolver_->list_builds());
-        console_ << fmt::format(
-            "  polar order {:.4f} (run mean {:.4f}), MSD {:.6g}, mean pressure "
-            "{:.6g}\n",
-            j["polar_order"].template get<double>(), j["mean_polar_order"].template get<double>(),
-            j["msd"].template get<double>(), j["mean_pressure"].template get<double>());
+        const double msd = j["msd"].template get<double>();
+        const double mean_pressure = j["mean_pressure"].template get<double>();
+        // the quantities this system has: directors only where the dynamics moves or
+        // uses them, a temperature only where particles have velocities
+        const nlohmann::json& last = j.at("final");
+        if (directors_matter())
+            console_ << fmt::format("  polar order {:.4f} (run mean {:.4f}), MSD {:.6g}, mean "
+                                    "pressure {:.6g}\n",
+                                    j["polar_order"].template get<double>(),
+                                    j["mean_polar_order"].template get<double>(), msd,
+                                    mean_pressure);
+        else if (inertial())
+            console_ << fmt::format(
+                "  temperature {:.6g} (run mean {:.6g}), potential energy {:.6g}, total energy "
+                "{:.6g}, MSD {:.6g}, mean pressure {:.6g}\n",
+                j["temperature"].template get<double>(),
+                j["mean_temperature"].template get<double>(),
+                last.at("potential_energy").template get<double>(),
+                last.at("total_energy").template get<double>(), msd, mean_pressure);
+        else
+            console_ << fmt::format("  potential energy {:.6g}, MSD {:.6g}, mean pressure {:.6g}\n",
+                                    last.at("potential_energy").template get<double>(), msd,
+                                    mean_pressure);
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
@@ -441,14 +459,32 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         return whole_;
     }
 
-    void progress(double order, double pressure) {
+    void progress(const Measured& m, double pressure) {
         if (!c_.progress) return;
         const auto now = std::chrono::steady_clock::now();
         if (last_progress_ && now - *last_progress_ < std::chrono::seconds(1)) return;
         last_progress_ = now;
-        console_ << fmt::format("  step {:<10} t = {:<10.5g} polar order = {:<8.4f} P = {:<10.5g} "
+        // as at the end of the run: what this system has (see finish)
+        const std::string shown = directors_matter()
+                                      ? fmt::format("polar order = {:<8.4f}", m.order)
+                                  : inertial() ? fmt::format("T = {:<10.5g}", m.temperature)
+                                               : fmt::format("MSD = {:<10.5g}", m.msd);
+        console_ << fmt::format("  step {:<10} t = {:<10.5g} {} P = {:<10.5g} "
                                 "{:.3g} particle-steps/s\n",
-                                state_.step, state_.time, order, pressure, rate());
+                                state_.step, state_.time, shown, pressure, rate());
+    }
+
+    // Whether the directors take part in the dynamics: a self-propulsion force, a torque
+    // or rotational diffusion. Only then is their polar order a property of the run; a
+    // passive system (LJ, WCA) keeps the random directors of its start, and their order
+    // would only measure the size of the sample.
+    bool directors_matter() const {
+        if (!evolver_->torques().empty()) return true;
+        for (const auto& f : evolver_->forces())
+            if (dynamic_cast<const SelfPropulsion<D>*>(f.get())) return true;
+        for (const auto& i : evolver_->integrators())
+            if (dynamic_cast<const BrownianRotationIntegrator<D>*>(i.get())) return true;
+        return false;
     }
 
     double rate() const {
