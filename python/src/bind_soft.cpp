@@ -192,21 +192,24 @@ last build). Views stay valid as long as the System lives.
              py::arg("dim") = py::none())
         .def(
             "read_init",
-            [](PySystem& s, const std::filesystem::path& path) {
+            [](PySystem& s, const std::filesystem::path& path, std::optional<std::int64_t> frame) {
                 if (s.model)
                     throw InputError("System.read_init: this System has particles already "
                                      "(views of its arrays would dangle); make a new System");
                 require_file(path, "System.read_init");
-                s.model = read_system(path, s.dim, s.seed);
+                s.model = read_system(path, s.dim, s.seed, frame);
                 s.source = path.string();
             },
-            py::arg("path"), R"doc(
-Reads an initial configuration in the ABP tutorial's JSON layout (what
-pedesis.builder.random_init and `pedesis init random` write): the box, and per
-particle "id" (0..N-1), "type", "r", optionally "n", "v", "radius", "mass". Each type
-becomes a species named A, B, ... A director the file leaves out is a random unit
-vector drawn from the seed. The dimension is that of the box ("Lz" makes it 3D) unless
-System(dim=...) says. Raises FileNotFoundError, or InputError naming the particle and key.
+            py::arg("path"), py::arg("frame") = py::none(), R"doc(
+Reads an initial configuration, as [initial] file of a config does (docs/config.md):
+the ABP tutorial's JSON (what pedesis.builder.random_init and `pedesis init random`
+write: the box, and per particle "id" (0..N-1), "type", "r", optionally "n", "v",
+"radius", "mass"), or a frame of a GSD file (HOOMD-blue's or pedesis' trajectory.gsd)
+or of an extended XYZ file: `frame` (0-based, negative from the end) or else the last.
+Each type becomes a species, named as the file names it (GSD, XYZ) or A, B, ... A
+director the file leaves out is a random unit vector drawn from the seed. The dimension
+is that of the file unless System(dim=...) says. Raises FileNotFoundError, or
+InputError naming the particle and key.
 )doc")
         .def_property_readonly(
             "dim", [](PySystem& s) { return s.get().dim(); }, "Dimension, 2 or 3.")

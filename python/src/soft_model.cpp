@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
+#include "pedesis/io/particle_file.hpp"
 #include "pedesis/io/tutorial_json.hpp"
 #include "pedesis/io/vtp_writer.hpp"
 #include "pedesis/observe/soft_observables.hpp"
@@ -80,24 +81,9 @@ template <int D> class System final : public SystemModel {
     SoftState<D> state;
 };
 
-int dimension_of_file(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-    if (doc.is_discarded() || !doc.is_object()) return 2; // the reader reports the fault
-    const auto sys = doc.find("system");
-    if (sys == doc.end() || !sys->is_object()) return 2;
-    const auto box = sys->find("box");
-    if (box != sys->end() && box->is_object() && box->contains("Lz")) return 3;
-    const auto parts = sys->find("particles");
-    if (parts != sys->end() && parts->is_array() && !parts->empty()) {
-        const auto& r = (*parts)[0];
-        if (r.is_object() && r.contains("r") && r["r"].is_array() && r["r"].size() == 3) return 3;
-    }
-    return 2;
-}
-
 template <int D>
-std::unique_ptr<SystemModel> read_system_d(const std::filesystem::path& path, std::uint64_t seed) {
+std::unique_ptr<SystemModel> read_system_d(const std::filesystem::path& path, std::uint64_t seed,
+                                           std::optional<std::int64_t> frame) {
     // the same path as `pedesis run` with [initial] file and no [[species]]: one species
     // per type, named A, B, ..., so that a config and a script give the same state
     RunConfig c;
@@ -106,6 +92,7 @@ std::unique_ptr<SystemModel> read_system_d(const std::filesystem::path& path, st
     c.dynamics = "brownian";
     c.seed = seed;
     c.initial_file = path.string();
+    c.initial_frame = frame;
     c.species_defaults.positions = "file";
     c.species_defaults.velocities = "zero";
     return std::make_unique<System<D>>(build_soft_state<D>(c));
@@ -242,10 +229,10 @@ template <int D> class EvolverD final : public EvolverModel {
 } // namespace
 
 std::unique_ptr<SystemModel> read_system(const std::filesystem::path& path, int dim,
-                                         std::uint64_t seed) {
-    if (dim == 0) dim = dimension_of_file(path);
-    if (dim == 2) return read_system_d<2>(path, seed);
-    if (dim == 3) return read_system_d<3>(path, seed);
+                                         std::uint64_t seed, std::optional<std::int64_t> frame) {
+    if (dim == 0) dim = particle_file_dimension(path, frame);
+    if (dim == 2) return read_system_d<2>(path, seed, frame);
+    if (dim == 3) return read_system_d<3>(path, seed, frame);
     throw InputError(fmt::format("System: dim must be 2 or 3, got {}", dim));
 }
 

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,10 +44,13 @@ class SystemModel {
     virtual void check_arrays(const std::string& context) const = 0;
 };
 
-// Reads the ABP tutorial's JSON (pedesis init random, or the tutorial's random_init):
-// box, positions, directors, types, radii; `dim` 0 takes the dimension from the box.
+// Reads a start as `pedesis run`'s [initial] file does (io/particle_file.hpp): the ABP
+// tutorial's JSON (pedesis init random, or the tutorial's random_init), or frame `frame`
+// of a GSD or extended XYZ file (unset: the last): box, positions, directors, types,
+// radii; `dim` 0 takes the dimension from the file.
 std::unique_ptr<SystemModel> read_system(const std::filesystem::path& path, int dim,
-                                         std::uint64_t seed);
+                                         std::uint64_t seed,
+                                         std::optional<std::int64_t> frame = std::nullopt);
 
 struct RunHooks {
     std::uint64_t every = 0;                    // steps between calls of between_steps

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace pedesis {
@@ -39,9 +40,22 @@ template <int D> struct FileParticle {
     std::optional<double> radius, mass; // mass may be +infinity (fixed obstacle)
 };
 
+// What a start file holds: the tutorial's JSON (read_tutorial_json), or a frame of a GSD
+// or extended XYZ file made into the same shape (io/particle_file.hpp).
 template <int D> struct ParticleFile {
     std::optional<Vec<D>> box;              // box lengths, if the file has a "box"
     std::vector<FileParticle<D>> particles; // in file order, ids as given
+    // The names of the types, by type index, where the file names them (GSD's
+    // particles/types, XYZ's species column); empty for the tutorial's JSON, whose types
+    // are numbers only.
+    std::vector<std::string> type_names;
+    // The radius of a particle whose file gives none, where species are taken from the
+    // file: the tutorial's 1, or half of the hoomd schema's default diameter 1 (GSD), or
+    // pedesis' default 0.5 (XYZ).
+    double default_radius = 1.0;
+    // The relative precision of the file's numbers, for comparing its box, radii and
+    // masses with a config's: GSD stores single precision; text keeps every digit.
+    double precision = 1e-12;
 };
 
 // Reads and validates a configuration: every value is checked (finite numbers,

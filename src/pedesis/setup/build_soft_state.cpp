@@ -2,7 +2,6 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
-#include "pedesis/io/tutorial_json.hpp"
 #include "pedesis/setup/build_system.hpp"
 
 #include <fmt/format.h>
@@ -10,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace pedesis {
 
@@ -60,7 +60,7 @@ template <int D> Vec<D> random_unit_vector(std::uint64_t seed, std::uint32_t tag
 template <int D> RunConfig complete_from_initial_file(const RunConfig& config) {
     RunConfig c = config;
     if (!c.initial_file || (!c.box_lengths.empty() && !c.species.empty())) return c;
-    const ParticleFile<D> f = read_tutorial_json<D>(*c.initial_file);
+    const ParticleFile<D> f = read_initial_file<D>(c);
     if (c.box_lengths.empty()) {
         if (!f.box)
             throw InputError(*c.initial_file + ": has no \"box\", and " + c.file +
@@ -70,9 +70,11 @@ template <int D> RunConfig complete_from_initial_file(const RunConfig& config) {
         c.periodic.assign(D, true);
     }
     if (c.species.empty()) {
+        // the file's type names (GSD, XYZ), else A, B, ... for the JSON's type numbers
+        const bool named = !f.type_names.empty();
         int types = 0;
         for (const auto& fp : f.particles) {
-            if (fp.type < 0 || fp.type >= 26)
+            if (!named && (fp.type < 0 || fp.type >= 26))
                 throw InputError(particle_label<D>(*c.initial_file, fp.id) +
                                  ": \"type\" must lie in 0..25 when " + c.file +
                                  " names no [[species]]");
@@ -82,13 +84,21 @@ template <int D> RunConfig complete_from_initial_file(const RunConfig& config) {
         std::vector<bool> set(c.species.size(), false);
         for (std::size_t s = 0; s < c.species.size(); ++s) {
             c.species[s] = c.species_defaults; // velocities as [initial] says
-            c.species[s].name = std::string(1, static_cast<char>('A' + s));
+            c.species[s].name =
+                named ? f.type_names[s] : std::string(1, static_cast<char>('A' + s));
+            if (!valid_species_name(c.species[s].name))
+                throw InputError(fmt::format(
+                    "{}: the type name '{}' cannot name a species (1 to 64 of A-Z a-z 0-9 _ - . "
+                    "+: it names log columns and output types); give [[species]] in {} and "
+                    "rename the type in the file",
+                    *c.initial_file, c.species[s].name, c.file));
             c.species[s].positions = "file";
-            c.species[s].radius = 1.0; // the tutorial's particles have unit radius
+            // where the file gives none: 1 for the tutorial's JSON, 0.5 for GSD and XYZ
+            c.species[s].radius = f.default_radius;
         }
         for (const auto& fp : f.particles) {
             auto& s = c.species[static_cast<std::size_t>(fp.type)];
-            const double r = fp.radius.value_or(1.0), m = fp.mass.value_or(1.0);
+            const double r = fp.radius.value_or(f.default_radius), m = fp.mass.value_or(1.0);
             if (!set[static_cast<std::size_t>(fp.type)]) {
                 s.radius = r;
                 s.mass = m;
@@ -97,7 +107,8 @@ template <int D> RunConfig complete_from_initial_file(const RunConfig& config) {
                 throw InputError(fmt::format(
                     "{}: radius {} and mass {} differ from those of the first particle of type "
                     "{} ({} and {}); give [[species]] in {} to say which is meant",
-                    particle_label<D>(*c.initial_file, fp.id), r, m, fp.type, s.radius, s.mass,
+                    particle_label<D>(*c.initial_file, fp.id), r, m,
+                    named ? "'" + s.name + "'" : std::to_string(fp.type), s.radius, s.mass,
                     c.file));
         }
     }
@@ -110,7 +121,7 @@ template <int D> SoftState<D> build_soft_state(const RunConfig& config) {
     s.box = build_box<D>(c);
     std::vector<std::optional<Vec<D>>> file_director;
     if (c.initial_file) {
-        const ParticleFile<D> f = read_tutorial_json<D>(*c.initial_file);
+        const ParticleFile<D> f = read_initial_file<D>(c);
         check_file(f, s.box, *c.initial_file);
         file_director.resize(f.particles.size());
         for (const auto& fp : f.particles) {

@@ -1,11 +1,13 @@
 #include "pedesis/setup/build_system.hpp"
 
 #include "pedesis/core/error.hpp"
-#include "pedesis/io/tutorial_json.hpp"
+#include "pedesis/io/particle_file.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/setup/random_placement.hpp"
 #include "pedesis/setup/velocities.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -155,6 +157,31 @@ bool self_propelled(const RunConfig& c) {
 
 } // namespace
 
+template <int D> ParticleFile<D> read_initial_file(const RunConfig& c) {
+    ParticleFile<D> f = read_particle_file<D>(*c.initial_file, c.initial_frame);
+    if (c.species.empty() || f.type_names.empty()) return f;
+    // HOOMD-blue's "A" is the species "A": by name, whatever the order of either list
+    std::vector<int> species_of(f.type_names.size(), -1);
+    for (std::size_t t = 0; t < f.type_names.size(); ++t)
+        for (std::size_t s = 0; s < c.species.size(); ++s)
+            if (c.species[s].name == f.type_names[t]) species_of[t] = static_cast<int>(s);
+    for (auto& fp : f.particles) {
+        const int s = species_of[static_cast<std::size_t>(fp.type)];
+        if (s < 0) {
+            std::string names;
+            for (const auto& sp : c.species) names += (names.empty() ? "'" : ", '") + sp.name + "'";
+            throw InputError(fmt::format(
+                "{}: particle {} is of type '{}', and {} has no [[species]] of that name (it has "
+                "{}); species are matched to the file's types by name",
+                *c.initial_file, fp.id, f.type_names[static_cast<std::size_t>(fp.type)], c.file,
+                names));
+        }
+        fp.type = s;
+    }
+    f.type_names.clear(); // the types are the config's species now
+    return f;
+}
+
 template <int D> Box<D> build_box(const RunConfig& c) {
     std::array<bool, D> periodic{};
     for (int a = 0; a < D; ++a) periodic[a] = c.periodic[static_cast<std::size_t>(a)];
@@ -179,10 +206,12 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
     std::vector<std::optional<Vec<D>>> file_velocity;
 
     if (c.initial_file) {
-        const ParticleFile<D> f = read_tutorial_json<D>(*c.initial_file);
+        const ParticleFile<D> f = read_initial_file<D>(c);
+        // (a GSD file's box is single precision)
+        const double box_tolerance = std::max(1e-9, f.precision);
         if (f.box) {
             for (int a = 0; a < D; ++a)
-                if (std::abs((*f.box)[a] - box.length(a)) > 1e-9 * box.length(a))
+                if (std::abs((*f.box)[a] - box.length(a)) > box_tolerance * box.length(a))
                     throw InputError(*c.initial_file + ": box does not match [box] of " + c.file);
         }
         // tags follow the file's ids in increasing order
@@ -200,12 +229,12 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
                                  " has no [[species]] entry in " + c.file);
             const auto s = static_cast<std::size_t>(fp.type);
             if (fp.radius &&
-                std::abs(*fp.radius - c.species[s].radius) > 1e-12 * c.species[s].radius)
+                std::abs(*fp.radius - c.species[s].radius) > f.precision * c.species[s].radius)
                 throw InputError(who + ": radius " + std::to_string(*fp.radius) +
                                  " differs from species '" + c.species[s].name + "' radius " +
                                  std::to_string(c.species[s].radius));
             if (fp.mass && !(*fp.mass == c.species[s].mass) &&
-                !(std::abs(*fp.mass - c.species[s].mass) <= 1e-12 * c.species[s].mass))
+                !(std::abs(*fp.mass - c.species[s].mass) <= f.precision * c.species[s].mass))
                 throw InputError(who + ": mass " + std::to_string(*fp.mass) +
                                  " differs from species '" + c.species[s].name + "' mass " +
                                  std::to_string(c.species[s].mass));
@@ -274,6 +303,8 @@ Momentum momentum_of(const RunConfig& c) {
     return Momentum::not_conserving;
 }
 
+template ParticleFile<2> read_initial_file<2>(const RunConfig&);
+template ParticleFile<3> read_initial_file<3>(const RunConfig&);
 template Box<2> build_box<2>(const RunConfig&);
 template Box<3> build_box<3>(const RunConfig&);
 template ParticleStore<2> build_particles<2>(const RunConfig&, const Box<2>&);

@@ -3,10 +3,18 @@
 // (lattice, random, a point, or a file) and draws its velocities.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/particles.hpp"
+#include "pedesis/io/tutorial_json.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/setup/run_config.hpp"
 
 namespace pedesis {
+
+// The [initial] file of `c` (its frame c.initial_frame), in any format
+// (io/particle_file.hpp). With [[species]] in the config and a file that names its types
+// (GSD, XYZ), each particle's type becomes the index of the species of that name, and a
+// type no species is named after is an InputError; the tutorial's JSON numbers its types,
+// which index the species in config order.
+template <int D> ParticleFile<D> read_initial_file(const RunConfig& c);
 
 template <int D> Box<D> build_box(const RunConfig& c);
 

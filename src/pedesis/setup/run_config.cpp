@@ -75,19 +75,6 @@ void read_velocity_keys(ConfigTable& t, SpeciesConfig& s, std::size_t d) {
                                  "energy would overflow)");
 }
 
-// A species name is a column of log.csv, a type of GSD and XYZ and a key of JSON: letters,
-// digits and a few marks that every one of those formats takes as they are.
-bool valid_species_name(const std::string& name) {
-    if (name.empty() || name.size() > 64) return false;
-    for (const char ch : name) {
-        const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
-                        (ch >= '0' && ch <= '9') || ch == '_' || ch == '-' || ch == '.' ||
-                        ch == '+';
-        if (!ok) return false;
-    }
-    return true;
-}
-
 void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults) {
     auto list = root.tables("species");
     if (list.empty()) {
@@ -452,6 +439,12 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
             c.initial_file = p.string();
             defaults.positions = "file";
         }
+        // which frame of a GSD or XYZ file (the reader checks it against the file)
+        if (auto k = init->integer("frame")) {
+            if (!c.initial_file)
+                throw InputError(init->where("frame") + ": a frame of what? give [initial] file");
+            c.initial_frame = *k;
+        }
         c.zero_momentum = init->boolean("zero_momentum").value_or(true);
         c.min_distance = init->number("min_distance", 0.0);
         init->finish();
@@ -496,6 +489,19 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
 }
 
 } // namespace
+
+// A species name is a column of log.csv, a type of GSD and XYZ and a key of JSON: letters,
+// digits and a few marks that every one of those formats takes as they are.
+bool valid_species_name(const std::string& name) {
+    if (name.empty() || name.size() > 64) return false;
+    for (const char ch : name) {
+        const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
+                        (ch >= '0' && ch <= '9') || ch == '_' || ch == '-' || ch == '.' ||
+                        ch == '+';
+        if (!ok) return false;
+    }
+    return true;
+}
 
 RunConfig load_run_config(const std::string& path, bool scripted) {
     enter_stage("reading the config");

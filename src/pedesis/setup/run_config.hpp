@@ -42,7 +42,9 @@ struct RunConfig {
     std::vector<SpeciesConfig> species;
     SpeciesConfig species_defaults; // from [initial], for species a soft run takes from its file
 
-    std::optional<std::string> initial_file; // tutorial JSON with positions (and maybe velocities)
+    // a start: the tutorial's JSON, a GSD or an extended XYZ file (io/particle_file.hpp)
+    std::optional<std::string> initial_file;
+    std::optional<std::int64_t> initial_frame; // of a GSD or XYZ file; unset: the last
     bool zero_momentum = true;
     double min_distance = 0.0;
 
@@ -91,6 +93,10 @@ struct RunConfig {
     std::uint64_t snapshot_every = 0;   // 0: first and last frame only
     std::uint64_t checkpoint_every = 0; // 0: only at the end
 };
+
+// Whether `name` can name a species: 1 to 64 of A-Z a-z 0-9 _ - . + (it names log
+// columns, and types in every output format).
+bool valid_species_name(const std::string& name);
 
 RunConfig load_run_config(const std::string& path, bool scripted = false);
 // The same from TOML text (the Python module's configs); messages name `name` as the
