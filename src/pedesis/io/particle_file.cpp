@@ -6,7 +6,6 @@
 #include "pedesis/io/xyz_reader.hpp"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cctype>
@@ -184,23 +183,6 @@ template <int D> ParticleFile<D> from_xyz(const fs::path& path, std::optional<st
     return out;
 }
 
-// The tutorial's JSON: whether the box has "Lz" or the first particle three coordinates.
-int json_dimension(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-    if (doc.is_discarded() || !doc.is_object()) return 2; // the reader reports the fault
-    const auto sys = doc.find("system");
-    if (sys == doc.end() || !sys->is_object()) return 2;
-    const auto box = sys->find("box");
-    if (box != sys->end() && box->is_object() && box->contains("Lz")) return 3;
-    const auto parts = sys->find("particles");
-    if (parts != sys->end() && parts->is_array() && !parts->empty()) {
-        const auto& r = (*parts)[0];
-        if (r.is_object() && r.contains("r") && r["r"].is_array() && r["r"].size() == 3) return 3;
-    }
-    return 2;
-}
-
 } // namespace
 
 ParticleFileFormat particle_file_format(const fs::path& path) {
@@ -276,7 +258,7 @@ int particle_file_dimension(const fs::path& path, std::optional<std::int64_t> fr
     case ParticleFileFormat::tutorial_json:
         break;
     }
-    return json_dimension(path);
+    return tutorial_json_dimension(path);
 }
 
 template ParticleFile<2> read_particle_file<2>(const fs::path&, std::optional<std::int64_t>);

@@ -65,4 +65,9 @@ template <int D> struct ParticleFile {
 // or the box are the caller's.
 template <int D> ParticleFile<D> read_tutorial_json(const std::filesystem::path& path);
 
+// The dimension of a file, read no further than needed to tell: 3 when the box has "Lz"
+// or the first particle's "r" has three components, else 2 (also for a malformed file,
+// which read_tutorial_json then refuses with the reason).
+int tutorial_json_dimension(const std::filesystem::path& path);
+
 } // namespace pedesis

@@ -57,14 +57,29 @@ std::vector<Species> species_table(const RunConfig& c) {
 template <int D> class SoftRunEngine final : public RunEngine<D> {
   public:
     SoftRunEngine(const RunConfig& c, const RunOptions& o, std::ostream& console)
-        : c_(complete_from_initial_file<D>(c)), o_(o), console_(console) {
+        : SoftRunEngine(c, o, console, read_start(c, o)) {}
+
+  private:
+    // The [initial] file, read once for the config's completion and the state (a
+    // 10^6-particle JSON takes seconds to parse), when either needs it.
+    static std::optional<ParticleFile<D>> read_start(const RunConfig& c, const RunOptions& o) {
+        const bool incomplete = c.box_lengths.empty() || c.species.empty();
+        if (!c.initial_file || (o.restart && !incomplete)) return std::nullopt;
+        return read_initial_file<D>(c);
+    }
+
+    SoftRunEngine(const RunConfig& c, const RunOptions& o, std::ostream& console,
+                  std::optional<ParticleFile<D>> start)
+        : c_(complete_from_initial_file<D>(c, start ? &*start : nullptr)), o_(o),
+          console_(console) {
         for (std::size_t a = 0; a < c_.periodic.size(); ++a)
             if (!c_.periodic[a])
                 throw InputError(c_.file + ": [box] boundary: the " + c_.dynamics +
                                  " engine needs periodic axes (axis " + std::to_string(a) +
                                  " is a wall)");
         const std::vector<Species> table = species_table(c_);
-        if (!o_.restart) state_ = build_soft_state<D>(c_);
+        if (!o_.restart) state_ = build_soft_state<D>(c_, start ? &*start : nullptr);
+        start.reset(); // (the state holds the particles now)
         evolver_ = std::make_unique<Evolver<D>>(state_, c_.list_skin, c_.list_r_cut);
         evolver_->set_sort_interval(c_.sort_every);
         for (const auto* list : {&c_.forces, &c_.torques, &c_.integrators})
@@ -118,6 +133,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         }
     }
 
+  public:
     Schedule schedule() const {
         return {Trigger::every_steps(c_.log_every),
                 c_.snapshot_every ? Trigger::every_steps(c_.snapshot_every) : Trigger::never(),

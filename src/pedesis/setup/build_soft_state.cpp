@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -58,9 +59,18 @@ template <int D> Vec<D> random_unit_vector(std::uint64_t seed, std::uint32_t tag
 } // namespace
 
 template <int D> RunConfig complete_from_initial_file(const RunConfig& config) {
+    if (!config.initial_file || (!config.box_lengths.empty() && !config.species.empty()))
+        return config;
+    const ParticleFile<D> f = read_initial_file<D>(config);
+    return complete_from_initial_file<D>(config, &f);
+}
+
+template <int D>
+RunConfig complete_from_initial_file(const RunConfig& config, const ParticleFile<D>* file) {
     RunConfig c = config;
     if (!c.initial_file || (!c.box_lengths.empty() && !c.species.empty())) return c;
-    const ParticleFile<D> f = read_initial_file<D>(c);
+    if (!file) throw std::logic_error("complete_from_initial_file: the file was not read");
+    const ParticleFile<D>& f = *file;
     if (c.box_lengths.empty()) {
         if (!f.box)
             throw InputError(*c.initial_file + ": has no \"box\", and " + c.file +
@@ -116,12 +126,22 @@ template <int D> RunConfig complete_from_initial_file(const RunConfig& config) {
 }
 
 template <int D> SoftState<D> build_soft_state(const RunConfig& config) {
-    const RunConfig c = complete_from_initial_file<D>(config);
+    // read once, for the config's completion, the directors and build_particles
+    std::optional<ParticleFile<D>> file;
+    if (config.initial_file) file = read_initial_file<D>(config);
+    return build_soft_state<D>(config, file ? &*file : nullptr);
+}
+
+template <int D>
+SoftState<D> build_soft_state(const RunConfig& config, const ParticleFile<D>* file) {
+    if (config.initial_file && !file)
+        throw std::logic_error("build_soft_state: the [initial] file was not read");
+    const RunConfig c = complete_from_initial_file<D>(config, file);
     SoftState<D> s;
     s.box = build_box<D>(c);
     std::vector<std::optional<Vec<D>>> file_director;
     if (c.initial_file) {
-        const ParticleFile<D> f = read_initial_file<D>(c);
+        const ParticleFile<D>& f = *file;
         check_file(f, s.box, *c.initial_file);
         file_director.resize(f.particles.size());
         for (const auto& fp : f.particles) {
@@ -131,7 +151,7 @@ template <int D> SoftState<D> build_soft_state(const RunConfig& config) {
             file_director[fp.id] = fp.n;
         }
     }
-    s.p = build_particles<D>(c, s.box); // tags follow the file's ids
+    s.p = build_particles<D>(c, s.box, file); // tags follow the file's ids
     const std::size_t n = s.p.size();
     s.director.resize(n);
     s.force.assign(n, Vec<D>{});
@@ -150,6 +170,10 @@ template <int D> SoftState<D> build_soft_state(const RunConfig& config) {
     return s;
 }
 
+template RunConfig complete_from_initial_file<2>(const RunConfig&, const ParticleFile<2>*);
+template RunConfig complete_from_initial_file<3>(const RunConfig&, const ParticleFile<3>*);
+template SoftState<2> build_soft_state<2>(const RunConfig&, const ParticleFile<2>*);
+template SoftState<3> build_soft_state<3>(const RunConfig&, const ParticleFile<3>*);
 template RunConfig complete_from_initial_file<2>(const RunConfig&);
 template RunConfig complete_from_initial_file<3>(const RunConfig&);
 template SoftState<2> build_soft_state<2>(const RunConfig&);

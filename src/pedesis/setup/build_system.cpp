@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 namespace pedesis {
 
@@ -189,6 +190,16 @@ template <int D> Box<D> build_box(const RunConfig& c) {
 }
 
 template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box) {
+    if (!c.initial_file) return build_particles<D>(c, box, nullptr);
+    const ParticleFile<D> f = read_initial_file<D>(c);
+    return build_particles<D>(c, box, &f);
+}
+
+template <int D>
+ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box,
+                                 const ParticleFile<D>* initial) {
+    if (c.initial_file && !initial)
+        throw std::logic_error("build_particles: the [initial] file was not read");
     ParticleStore<D> p;
     for (const auto& s : c.species) p.species_table.push_back(Species{s.name, s.radius, s.mass});
     if (p.species_table.size() > 65535) throw InputError(c.file + ": too many species");
@@ -206,7 +217,7 @@ template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<
     std::vector<std::optional<Vec<D>>> file_velocity;
 
     if (c.initial_file) {
-        const ParticleFile<D> f = read_initial_file<D>(c);
+        const ParticleFile<D>& f = *initial;
         // (a GSD file's box is single precision)
         const double box_tolerance = std::max(1e-9, f.precision);
         if (f.box) {
@@ -307,6 +318,10 @@ template ParticleFile<2> read_initial_file<2>(const RunConfig&);
 template ParticleFile<3> read_initial_file<3>(const RunConfig&);
 template Box<2> build_box<2>(const RunConfig&);
 template Box<3> build_box<3>(const RunConfig&);
+template ParticleStore<2> build_particles<2>(const RunConfig&, const Box<2>&,
+                                             const ParticleFile<2>*);
+template ParticleStore<3> build_particles<3>(const RunConfig&, const Box<3>&,
+                                             const ParticleFile<3>*);
 template ParticleStore<2> build_particles<2>(const RunConfig&, const Box<2>&);
 template ParticleStore<3> build_particles<3>(const RunConfig&, const Box<3>&);
 

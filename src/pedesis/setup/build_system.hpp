@@ -19,6 +19,11 @@ template <int D> ParticleFile<D> read_initial_file(const RunConfig& c);
 template <int D> Box<D> build_box(const RunConfig& c);
 
 template <int D> ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box);
+// The same with the [initial] file already read (read_initial_file), so that a caller
+// that needs it too reads a large file once.
+template <int D>
+ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box,
+                                 const ParticleFile<D>* initial);
 
 // Whether the config's equations of motion conserve momentum (observe/thermo.hpp): the
 // event and stepped engines do, and so does `nve` unless a self-propulsion force is on;
