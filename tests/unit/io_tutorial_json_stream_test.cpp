@@ -74,8 +74,17 @@ template <int D> void write_start(const fs::path& path, std::size_t n) {
     std::fclose(out);
 }
 
+// AddressSanitizer (make sanitize) pads and quarantines every allocation, so a peak RSS
+// there says nothing of the reader's: the sanitizer build reads a tenth of the particles
+// for its memory checks, and the release build (make test) holds the bound.
+#ifdef __SANITIZE_ADDRESS__
+constexpr bool sanitized = true;
+#else
+constexpr bool sanitized = false;
+#endif
+
 template <int D> void expect_large_start_under_300_bytes_per_particle(const fs::path& path) {
-    constexpr std::size_t n = 1000000;
+    const std::size_t n = sanitized ? 100000 : 1000000;
     write_start<D>(path, n);
     // the peak is measured from here: "5" resets VmHWM to the current RSS (Linux 4.0+)
     {
@@ -88,7 +97,9 @@ template <int D> void expect_large_start_under_300_bytes_per_particle(const fs::
     ASSERT_LE(status_kb("VmHWM:"), before + 1024.0) << "the peak RSS was not reset";
     // telling the dimension (Python's System.read_init) reads the box and one particle
     EXPECT_EQ(tutorial_json_dimension(path), D);
-    EXPECT_LT(status_kb("VmHWM:") - before, 1024.0);
+    if (!sanitized) {
+        EXPECT_LT(status_kb("VmHWM:") - before, 1024.0);
+    }
     const auto t0 = std::chrono::steady_clock::now();
     const ParticleFile<D> f = read_tutorial_json<D>(path);
     const double seconds =
@@ -97,10 +108,13 @@ template <int D> void expect_large_start_under_300_bytes_per_particle(const fs::
     ASSERT_EQ(f.particles.size(), n);
     EXPECT_EQ(f.particles.back().id, n - 1);
     EXPECT_TRUE(f.particles.back().n && f.particles.back().v && f.particles.back().radius);
-    EXPECT_LT(per_particle, 300.0) << D << "D";
+    if (!sanitized) {
+        EXPECT_LT(per_particle, 300.0) << D << "D";
+    }
     std::printf("%dD: %zu particles (%.0f MB of JSON) read in %.2f s, peak %.0f bytes per "
-                "particle\n",
-                D, n, static_cast<double>(fs::file_size(path)) / 1e6, seconds, per_particle);
+                "particle%s\n",
+                D, n, static_cast<double>(fs::file_size(path)) / 1e6, seconds, per_particle,
+                sanitized ? " (AddressSanitizer: not held to the bound)" : "");
     fs::remove(path);
 }
 
