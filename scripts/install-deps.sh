@@ -12,6 +12,7 @@ packages=(
   python3-dev pybind11-dev python3-pytest
   python3-ase python3-vtk9 zlib1g-dev
   python3-nbclient python3-ipykernel python3-nbconvert python3-nbformat
+  python3-venv python3-build python3-pybind11
   clang
   libopenmpi-dev openmpi-bin
   libcpp-httplib-dev libssl-dev chromium

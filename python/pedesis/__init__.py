@@ -18,6 +18,10 @@ and the hard-particle gases (event-driven or time-stepped) are pedesis.Gas.
 Everything runs in C++; numpy arrays view its memory. See docs/python.md.
 """
 try:
+    from ._version import __version__  # the build's (CMake or setup.py): `pedesis --version`'s
+except ImportError:  # the source tree's python/, unbuilt: no version to tell
+    __version__ = "unknown"
+try:
     from . import _pedesis  # noqa: F401
 except ImportError as _error:
     # a build without the compiled module (the sanitizer build has none): the pure-Python
