@@ -15,12 +15,15 @@ The soft/active engine reads like the ABP tutorial (seed 001)::
     e.run(1000, 0.01, every=10, callback=lambda step: d.dump_vtp(f"test_{step:05d}.vtp"))
 
 and the hard-particle gases (event-driven or time-stepped) are pedesis.Gas.
-Everything runs in C++; numpy arrays view its memory. See docs/python.md.
+Everything runs in C++; numpy arrays view its memory. See docs/python.md. In a
+notebook, pedesis.show(run_dir) (or a Simulation or pedesis.open_run(run_dir) ending a
+cell) draws a run inline, and pedesis.movie(run_dir) plays it (pedesis/show.py).
 """
 try:
     from ._version import __version__  # the build's (CMake or setup.py): `pedesis --version`'s
 except ImportError:  # the source tree's python/, unbuilt: no version to tell
     __version__ = "unknown"
+from .show import open_run, show, movie  # noqa: F401  (pure Python: the CLI draws)
 try:
     from . import _pedesis  # noqa: F401
 except ImportError as _error:
@@ -36,4 +39,4 @@ else:
     from ._engines import __all__ as _engine_names
     from . import builder  # noqa: F401  (needs the names above)
 
-    __all__ = [*_engine_names, "builder"]
+    __all__ = [*_engine_names, "builder", "open_run", "show", "movie"]
