@@ -7,12 +7,14 @@ import warnings as _warnings
 from . import _pedesis
 from ._pedesis import Evolver, Gas, InputError, Plugin, RunError, System
 from .simulation import Callback, GSDWriter, Periodic, Simulation, XYZWriter
+from . import recording as _recording
+from .recording import Recording
 
 __all__ = [
     "System", "Evolver", "Dump", "Gas", "Plugin", "InputError", "RunError",
     "HarmonicForce", "WcaForce", "LjForce", "SelfPropulsion", "PolarAlign", "BrownianIntegrator",
     "BrownianRotIntegrator", "LangevinIntegrator", "NVEIntegrator",
-    "Simulation", "Periodic", "GSDWriter", "XYZWriter", "Callback", "StopName",
+    "Simulation", "Periodic", "GSDWriter", "XYZWriter", "Callback", "StopName", "Recording",
 ]
 
 def _plugin_class(entry):
@@ -137,4 +139,12 @@ def _named_stops(run):
     return wrapped
 
 
-Gas.run = _named_stops(Gas.run)
+Gas.run = _recording.recording_gas_run(_named_stops(Gas.run))
+
+# Frames recorded as the run goes, and the inline view (pedesis/recording.py)
+Gas.record = _recording.gas_record
+Gas._repr_html_ = _recording.gas_repr_html
+System._repr_html_ = _recording.system_repr_html
+Evolver.record = _recording.evolver_record
+Evolver.run = _recording.recording_evolver_run(Evolver.run)
+Evolver.evolve = _recording.recording_evolve(Evolver.evolve)

@@ -102,7 +102,13 @@ def _inline_frame(page, name, height):
 def show(obj, max_bytes=DEFAULT_MAX_BYTES, height=560, every=None):
     """The viewer page of a run directory (a path, a RunDirectory or a Simulation), inline:
     particles, playback and the log's plot. Frames are thinned (every k-th, and the last)
-    until the page is under `max_bytes`, or as `every` says."""
+    until the page is under `max_bytes`, or as `every` says. A Recording, a Gas or a System
+    shows its frames (pedesis/recording.py)."""
+    if type(obj).__name__ in ("Gas", "System"):  # a Gas's latest recording, or the state now
+        from .recording import latest_recording
+        obj = latest_recording(obj)
+    if hasattr(obj, "frames") and hasattr(obj, "save"):  # a Recording
+        return obj.show(max_bytes, height, every)
     run_dir = _run_directory(obj)
     if not run_dir.is_dir():
         raise FileNotFoundError(f"{run_dir}: no such run directory")

@@ -103,6 +103,11 @@ class Simulation:
         if type(w) not in formats:
             raise _pedesis.InputError(f"Simulation.writers: {w!r} is not a GSDWriter or "
                                       "XYZWriter")
+        import pathlib
+        folder = pathlib.Path(w.path).parent.absolute()
+        if self.out_dir is not None and folder.is_relative_to(pathlib.Path(self.out_dir).absolute()):
+            # a file in the run directory, which run() makes: made now, for the writer
+            folder.mkdir(parents=True, exist_ok=True)
         self._run.add_trajectory(str(w.path), formats[type(w)], w.trigger.steps,
                                  w.trigger.time)
 

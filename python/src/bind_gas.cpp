@@ -2,6 +2,7 @@
 #include "bindings.hpp"
 #include "errors.hpp"
 #include "gas_model.hpp"
+#include "script_trigger.hpp"
 
 #include "pedesis/core/error.hpp"
 
@@ -11,6 +12,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cmath>
+#include <memory>
 
 namespace py = pybind11;
 
@@ -35,6 +37,29 @@ template <class F> py::array_t<double> per_particle(const GasModel& g, F value) 
     auto* out = a.mutable_data();
     for (std::size_t i = 0; i < types.size(); ++i) out[i] = value(g.species()[types[i]]);
     return a;
+}
+
+// The state now, laid out as Simulation.frame() gives it (pedesis.Recording keeps these).
+py::dict frame(const GasModel& g) {
+    const std::size_t n = g.size();
+    const int d = g.dim();
+    py::dict out;
+    out["time"] = g.time();
+    // (as the engines' frames count: the event engine has no steps, its collisions stand in)
+    out["step"] = g.dynamics() == "event" ? g.pair_collisions() : g.steps();
+    out["box"] = g.box();
+    std::vector<std::string> names;
+    for (const auto& sp : g.species()) names.push_back(sp.name);
+    out["species"] = names;
+    const auto t = g.types();
+    py::array_t<std::uint16_t> types(n);
+    std::copy(t.begin(), t.end(), types.mutable_data());
+    out["type"] = types;
+    out["position"] = rows(g.positions(), n, d);
+    out["velocity"] = rows(g.velocities(), n, d);
+    out["radius"] = per_particle(g, [](const Species& s) { return s.radius; });
+    out["mass"] = per_particle(g, [](const Species& s) { return s.mass; });
+    return out;
 }
 
 std::unique_ptr<PyGas> make(const RunConfig& c, const std::string& source) {
@@ -201,6 +226,35 @@ the walls per unit time and wall area (seed 003's definition), on periodic axes 
 collision virial (f / d) T / V + sum J n.r / (V dt), f the degrees of freedom; the mean
 over the axes. The temperature there is the mean of those at both ends of the interval.
 )doc")
+        .def(
+            "frame", [](const PyGas& g) { return frame(*g.model); },
+            R"doc(
+The state now as a dict of numpy arrays in tag order, laid out as Simulation.frame():
+time, step (the event engine: pair collisions), box, species (names), type, position,
+velocity, radius, mass.
+)doc")
+        .def(
+            "_add_recording",
+            [](PyGas& g, py::function fn, std::optional<std::uint64_t> steps,
+               std::optional<double> time) {
+                const Trigger t =
+                    make_trigger(steps, time, "Gas.record", g.model->dynamics() == "stepped");
+                GasModel* model = g.model.get();
+                // run() copies its operations with the GIL released: a shared_ptr's copies
+                // leave fn's reference count alone, and the last one takes the GIL to drop it
+                std::shared_ptr<py::function> held(new py::function(std::move(fn)),
+                                                   [](py::function* f) {
+                                                       py::gil_scoped_acquire gil;
+                                                       delete f;
+                                                   });
+                // fn receives the frame, so it needs no reference to the Gas (which
+                // holds fn: a cycle Python's collector cannot see through C++)
+                g.model->add_operation(t, [held, model] {
+                    py::gil_scoped_acquire gil;
+                    (*held)(frame(*model));
+                });
+            },
+            py::arg("fn"), py::arg("steps") = py::none(), py::arg("time") = py::none())
         .def("__repr__", [](const PyGas& g) {
             return fmt::format("<pedesis.Gas: {} {}D, N={}, t={:g}, from {}>", g.model->dynamics(),
                                g.model->dim(), g.model->size(), g.model->time(), g.source);

@@ -415,6 +415,8 @@ blow-up) or to NaN raises RunError naming the particle.
             "potential_energy", [](PyEvolver& e) { return e.model->potential_energy(); },
             "Potential energy of the pair forces at the current positions.")
         .def_property_readonly(
+            "system", [](const PyEvolver& e) { return e.system; }, "The System it evolves.")
+        .def_property_readonly(
             "list_builds", [](const PyEvolver& e) { return e.model->list_builds(); },
             "Neighbour-list builds so far.")
         .def_property_readonly(

@@ -87,6 +87,7 @@ template <int D, class Engine> class Gas : public GasModel {
                              : std::numeric_limits<std::uint64_t>::max());
         const RunOptions no_directory;
         Simulation<D> sim(loop, Schedule{}, OutputChoice{}, no_directory);
+        for (const auto& op : this->operations_) sim.add_operation(op.trigger, op.act);
         const std::uint64_t end_step =
             limits.steps ? steps() + *limits.steps : std::numeric_limits<std::uint64_t>::max();
         if (const char* why = sim.advance(

@@ -4,9 +4,11 @@
 // advanced until a time, a collision count or a number of steps, and measured. Nothing
 // here knows Python.
 #include "pedesis/core/species.hpp"
+#include "pedesis/run/trigger.hpp"
 #include "pedesis/setup/run_config.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,6 +52,19 @@ class GasModel {
     // unit time and area on walled axes, the collision virial on periodic ones, with the
     // mean of the temperatures at both ends as log.csv has it.
     virtual double pressure() = 0;
+
+    // Something a script does each time `trigger` fires inside run() (a recording of
+    // frames), in every later run(); the trigger's grid is anchored at t = 0 / step 0.
+    void add_operation(Trigger trigger, std::function<void()> act) {
+        operations_.push_back({trigger, std::move(act)});
+    }
+
+  protected:
+    struct Operation {
+        Trigger trigger;
+        std::function<void()> act;
+    };
+    std::vector<Operation> operations_;
 };
 
 std::unique_ptr<GasModel> make_gas(const RunConfig& config);

@@ -7,6 +7,7 @@ PYBIND11_MODULE(_pedesis, m) {
     pedesis::python::register_errors(m);
     pedesis::python::bind_soft(m);
     pedesis::python::bind_gas(m);
+    pedesis::python::bind_frames(m);
     pedesis::python::bind_run(m);
     pedesis::python::bind_analyze(m);
 }

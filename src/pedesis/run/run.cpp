@@ -2,9 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
-#include "pedesis/io/atomic_file.hpp"
-#include "pedesis/io/gsd_writer.hpp"
-#include "pedesis/io/xyz_writer.hpp"
+#include "pedesis/io/trajectory_file.hpp"
 #include "pedesis/run/event_run.hpp"
 #include "pedesis/run/simulation.hpp"
 #include "pedesis/run/soft_run.hpp"
@@ -25,31 +23,6 @@ EngineSetup<D> engine_setup(const RunConfig& c, const RunOptions& o, std::ostrea
     if (c.dynamics == "stepped") return stepped_engine_setup<D>(c, o, out);
     return event_engine_setup<D>(c, o, out);
 }
-
-// A trajectory a script asked for: appended to at its trigger, committed at the end.
-template <int D> class ScriptTrajectory {
-  public:
-    ScriptTrajectory(const std::filesystem::path& path, const std::string& format) {
-        if (format == "gsd")
-            gsd_ = std::make_unique<GsdWriter<D>>(path);
-        else if (format == "xyz")
-            xyz_ = std::make_unique<AtomicAppendFile>(path);
-        else
-            throw InputError("trajectory format '" + format + "' (known: gsd, xyz)");
-    }
-    void append(const Frame<D>& f) {
-        if (gsd_) gsd_->append(f);
-        if (xyz_) xyz_->append(xyz_frame(f));
-    }
-    void commit() {
-        if (gsd_) gsd_->commit();
-        if (xyz_) xyz_->commit();
-    }
-
-  private:
-    std::unique_ptr<GsdWriter<D>> gsd_;
-    std::unique_ptr<AtomicAppendFile> xyz_;
-};
 
 template <int D> class RunOf final : public Run {
   public:
@@ -84,7 +57,7 @@ template <int D> class RunOf final : public Run {
     }
     void add_trajectory(const std::filesystem::path& path, const std::string& format,
                         Trigger trigger) override {
-        auto t = std::make_shared<ScriptTrajectory<D>>(path, format);
+        auto t = std::make_shared<TrajectoryFile<D>>(path, format);
         trajectories_.push_back(t);
         RunEngine<D>& engine = *setup_.engine;
         t->append(engine.frame()); // the start, as the run's own trajectory has it
@@ -155,7 +128,7 @@ template <int D> class RunOf final : public Run {
     EngineSetup<D> setup_;
     Simulation<D> sim_;
     bool has_steps_;
-    std::vector<std::shared_ptr<ScriptTrajectory<D>>> trajectories_;
+    std::vector<std::shared_ptr<TrajectoryFile<D>>> trajectories_;
 };
 
 } // namespace
