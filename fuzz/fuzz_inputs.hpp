@@ -7,6 +7,7 @@
 
 #include "pedesis/io/checkpoint_file.hpp"
 #include "pedesis/io/gsd_reader.hpp"
+#include "pedesis/io/particle_file.hpp"
 #include "pedesis/io/tutorial_json.hpp"
 #include "pedesis/io/xyz_reader.hpp"
 #include "pedesis/run/run.hpp"
@@ -30,16 +31,30 @@ inline void tutorial_json_input(const std::uint8_t* data, std::size_t size) {
     (void)read_tutorial_json<3>(path);
 }
 
-// The extended-XYZ reader (pedesis render, analyze): open, then every frame.
+// The same file as a start ([initial] file, System.read_init): its dimension, then its
+// first and last frames in 2D and 3D, each of which may be refused.
+inline void start_file_input(const std::filesystem::path& path) {
+    refusal_allowed([&] { (void)particle_file_dimension(path); });
+    for (std::int64_t frame : {0, -1}) {
+        refusal_allowed([&] { (void)read_particle_file<2>(path, frame); });
+        refusal_allowed([&] { (void)read_particle_file<3>(path, frame); });
+    }
+}
+
+// The extended-XYZ reader (pedesis render, analyze): open, then every frame; then the
+// file as a start.
 inline void xyz_input(const std::uint8_t* data, std::size_t size) {
     const auto path = as_file(data, size, ".xyz");
+    start_file_input(path);
     const XyzReader reader(path, true);
     for (std::size_t k = 0; k < reader.frames(); ++k) (void)reader.frame(k);
 }
 
-// The GSD reader (pedesis render, analyze): open, then the frames.
+// The GSD reader (pedesis render, analyze): open, then the frames; then the file as a
+// start.
 inline void gsd_input(const std::uint8_t* data, std::size_t size) {
     const auto path = as_file(data, size, ".gsd");
+    start_file_input(path);
     const GsdReader reader(path);
     for (std::uint64_t k = 0; k < reader.frames() && k < 64; ++k) (void)reader.frame(k);
 }

@@ -8,10 +8,11 @@ import subprocess
 import time
 
 import numpy as np
+import pedesis
 
 from pedesis import validate
 from pedesis.validate import __main__ as validate_main
-from pedesis.validate import stats, theory
+from pedesis.validate import configs, stats, theory
 from pedesis.validate.cases import liquid
 from pedesis.validate.checks import CaseResult, Check
 
@@ -116,11 +117,29 @@ def test_block_mean_error_matches_independent_samples():
     assert abs(np.mean(errors) / 0.01 - 1.0) < 0.06
 
 
-def test_lennard_jones_tail_corrections():
-    # Allen & Tildesley's formulas at rho = 0.776, rc = 3: u = -0.24065, p = -0.37358
-    u, p = liquid.tail_corrections(0.776, 3.0)
-    assert abs(u - 8 / 3 * math.pi * 0.776 * (3.0 ** -9 / 3 - 3.0 ** -3)) < 1e-12
-    assert abs(u + 0.2407) < 1e-3 and abs(p + 0.3736) < 1e-3
+def test_lennard_jones_tail_corrections_come_from_the_engine(tmp_path):
+    # The case asks for [[force]] tail = true; at NIST's state point (rho = 0.776, rc = 3)
+    # the engine's correction is Allen & Tildesley's u = (8/3) pi rho (rc^-9 / 3 - rc^-3)
+    # = -0.2406678 per particle and p = (16/3) pi rho^2 (2/3 rc^-9 - rc^-3) = -0.3733455:
+    # the log with the tail minus the log without, at the same positions.
+    assert "tail = true\n" in configs.table("force", "lj", epsilon=1.0, cutoff=3.0, tail=True)
+    count = 500
+    length = (count / liquid.NIST_RHO) ** (1.0 / 3.0)
+    rows = {}
+    for tail in (False, True):
+        forces = configs.table("force", "lj", epsilon=1.0, cutoff=3.0, tail=tail)
+        integrators = configs.table("integrator", "langevin", T=0.9, gamma=1.0)
+        text = configs.soft_run(3, "langevin", count, length, 3, 10, 0.005, 10, 10,
+                                forces=forces, integrators=integrators, positions="fcc")
+        config = tmp_path / f"tail_{tail}.toml"
+        config.write_text(text)
+        sim = pedesis.Simulation.from_file(config, out=tmp_path / f"run_{tail}")
+        sim.run(steps=1)
+        rows[tail] = sim.log  # (the row of step 0: the same fcc positions in both)
+        sim.close()
+    u = (rows[True]["potential_energy"] - rows[False]["potential_energy"]) / count
+    p = rows[True]["pressure"] - rows[False]["pressure"]
+    assert abs(u + 0.2406678) < 1e-6 and abs(p + 0.3733455) < 1e-6
 
 
 def test_a_signal_stops_the_suite_and_its_runs(pedesis_bin, tmp_path):

@@ -85,5 +85,7 @@ progress = false
 
 def table(kind, name, **keys):
     """One [[kind]] table (force, torque, integrator) with its keys."""
-    body = "".join(f"{k} = {v!r}\n".replace("'", '"') for k, v in keys.items())
+    def toml(v):
+        return ("true" if v else "false") if isinstance(v, bool) else repr(v).replace("'", '"')
+    body = "".join(f"{k} = {toml(v)}\n" for k, v in keys.items())
     return f"[[{kind}]]\nname = \"{name}\"\n{body}\n"

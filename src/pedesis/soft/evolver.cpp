@@ -266,6 +266,24 @@ template <int D> bool Evolver<D>::interrupted() const {
 }
 
 template <int D> PairTotals Evolver<D>::pair_totals() {
+    PairTotals t = pair_totals_within_cutoff();
+    add_tail_corrections(t);
+    return t;
+}
+
+template <int D> void Evolver<D>::add_tail_corrections(PairTotals& t) {
+    const auto& table = s_.p.species_table;
+    std::vector<double> counts(table.size(), 0.0);
+    for (std::size_t i = 0; i < s_.owned(); ++i) counts[s_.p.species[i]] += 1.0;
+    if (domain_) domain_->comm().sum(counts); // (pair_totals is collective there already)
+    for (const auto& f : forces_) {
+        const PairTotals tail = f->tail(table, counts, s_.box.volume());
+        t.energy += tail.energy;
+        t.virial += tail.virial;
+    }
+}
+
+template <int D> PairTotals Evolver<D>::pair_totals_within_cutoff() {
     if (device_) return device_->pair_totals();
     if (!nl_) ensure_list();
     PairTotals t;

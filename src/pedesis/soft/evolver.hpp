@@ -81,7 +81,8 @@ template <int D> class Evolver {
     std::vector<Vec<D>> list_reference() const;
     void restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds);
 
-    // Energy and virial of the conservative pair forces at the current positions.
+    // Energy and virial of the conservative pair forces at the current positions, with
+    // the terms' tail corrections (ForceTerm::tail).
     PairTotals pair_totals();
     const NeighborList<D>& neighbor_list();
     std::uint64_t list_builds() const { return builds_; }
@@ -92,6 +93,9 @@ template <int D> class Evolver {
     const std::vector<std::unique_ptr<Integrator<D>>>& integrators() const { return integrators_; }
 
   private:
+    PairTotals pair_totals_within_cutoff();
+    // The terms' shares beyond their cutoffs, for the whole system's composition.
+    void add_tail_corrections(PairTotals& t);
     // for_totals: called for the log's totals (under a domain decomposition, see there)
     void ensure_list(bool for_totals = false);
     void evolve_shared(double dt);

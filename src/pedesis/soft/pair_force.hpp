@@ -60,6 +60,25 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
             add_rows<false>(s, nl);
     }
 
+    // Sum over species pairs of N_a N_b / (2 V) times the pair's integrals beyond its
+    // cutoff, for the evaluators that have them (LjPair with tail).
+    PairTotals tail(const std::vector<Species>& table, const std::vector<double>& counts,
+                    double volume) const override {
+        PairTotals t;
+        if constexpr (requires(const Pair& p) { p.template tail_integrals<D>(1.0); }) {
+            check_species(table.size());
+            for (std::size_t a = 0; a < table.size(); ++a)
+                for (std::size_t b = 0; b < table.size(); ++b) {
+                    const auto [energy, virial] =
+                        pair(a, b).template tail_integrals<D>(table[a].radius + table[b].radius);
+                    const double weight = 0.5 * counts[a] * counts[b] / volume;
+                    t.energy += weight * energy;
+                    t.virial += weight * virial;
+                }
+        }
+        return t;
+    }
+
     void add_totals(const SoftState<D>& s, const NeighborList<D>& nl,
                     PairTotals& t) const override {
         check_species(s.p.species_table.size());

@@ -8,6 +8,7 @@
 #include "pedesis/core/host_device.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace pedesis {
 
@@ -76,15 +77,33 @@ struct WcaPair {
 // default, as LAMMPS' lj/cut without pair_modify shift: the energy jumps by
 // U(r_c) ~ -0.016 eps at the cutoff, the force is continuous enough for NVE at in.lj's
 // dt. With `shift` the energy has U(r_c) subtracted, so it is continuous (HOOMD-blue's
-// mode "shift"); forces are the same. With sigma <= 0, sigma = r_i + r_j.
+// mode "shift"); forces are the same. With sigma <= 0, sigma = r_i + r_j. With `tail`
+// the totals (energy, pressure) get the homogeneous fluid's share beyond the cutoff, as
+// LAMMPS' pair_modify tail yes; the forces do not change.
 struct LjPair {
     double epsilon = 1.0;
     double sigma = -1.0;
     double cutoff = 2.5;
     bool shift = false;
+    bool tail = false;
 
     bool operator==(const LjPair& o) const {
-        return epsilon == o.epsilon && sigma == o.sigma && cutoff == o.cutoff && shift == o.shift;
+        return epsilon == o.epsilon && sigma == o.sigma && cutoff == o.cutoff && shift == o.shift &&
+               tail == o.tail;
+    }
+    // With tail, {the integral of U over r > r_c, that of -r U'(r)}, each over the area
+    // (2D: 2 pi r dr) or volume (3D: 4 pi r^2 dr) element; {0, 0} without. With c the
+    // cutoff in sigma and S the sphere's area 2 pi or 4 pi:
+    //   4 eps S sigma^D [c^(D-12) / (12 - D) - c^(D-6) / (6 - D)],
+    //   4 eps S sigma^D [12 c^(D-12) / (12 - D) - 6 c^(D-6) / (6 - D)].
+    template <int D> std::pair<double, double> tail_integrals(double rsum) const {
+        if (!tail) return {0.0, 0.0};
+        constexpr double pi = 3.141592653589793;
+        const double sphere = D == 2 ? 2.0 * pi : 4.0 * pi;
+        const double scale = 4.0 * epsilon * sphere * std::pow(sig(rsum), D);
+        const double repulsive = std::pow(cutoff, D - 12) / (12 - D);
+        const double attractive = std::pow(cutoff, D - 6) / (6 - D);
+        return {scale * (repulsive - attractive), scale * (12.0 * repulsive - 6.0 * attractive)};
     }
     PEDESIS_HD double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return cutoff * sig(max_rsum); }

@@ -48,6 +48,11 @@ void add_pair_force(Evolver<D>& e, const PluginSpec& spec, const std::vector<Spe
     e.add_force(std::make_unique<PairForce<D, Pair>>(spec.name, std::move(table), n));
 }
 
+bool flag(const PluginSpec& spec, const char* key) {
+    const auto it = spec.flags.find(key);
+    return it != spec.flags.end() && it->second;
+}
+
 PluginInfo row(PluginInfo info, std::pair<AddPlugin<2>, AddPlugin<3>> add) {
     info.add2 = add.first;
     info.add3 = add.second;
@@ -97,14 +102,22 @@ const std::vector<PluginInfo>& plugin_catalogue() {
              "U = 4 eps [(sigma/r)^12 - (sigma/r)^6] (- U(r_c) with shift) for r < cutoff sigma",
              true,
              {{"shift", "subtract U(r_c), so that the energy is continuous at the cutoff "
-                        "(default false, as LAMMPS' lj/cut)"}}},
+                        "(default false, as LAMMPS' lj/cut)"},
+              {"tail", "add the energy and pressure beyond the cutoff of a homogeneous fluid "
+                       "(g(r) = 1 there), as LAMMPS' pair_modify tail yes; forces unchanged; "
+                       "not with shift (default false)"}}},
             builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
                                std::uint64_t) {
-                const auto it = s.flags.find("shift");
-                const bool shift = it != s.flags.end() && it->second;
-                add_pair_force<LjPair>(e, s, sp, [shift](auto value) {
+                const bool shift = flag(s, "shift"), tail = flag(s, "tail");
+                if (shift && tail)
+                    throw InputError(s.name +
+                                     ": shift and tail together: the tail correction completes "
+                                     "the truncated potential, not the shifted one (as in LAMMPS, "
+                                     "where pair_modify tail yes goes with lj/cut unshifted); "
+                                     "choose one");
+                add_pair_force<LjPair>(e, s, sp, [shift, tail](auto value) {
                     return LjPair{value("epsilon", 0.0), value("sigma", -1.0), value("cutoff", 2.5),
-                                  shift};
+                                  shift, tail};
                 });
             })),
         row({PluginKind::force,

@@ -26,6 +26,13 @@ template <int D> class ForceTerm {
     virtual double range(const SoftState<D>&) const { return 0.0; }
     virtual void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const = 0;
     virtual void add_totals(const SoftState<D>&, const NeighborList<D>&, PairTotals&) const {}
+    // The energy and virial beyond the cutoff of a homogeneous fluid of counts[s]
+    // particles of species s in `volume` (LJ's tail correction, with g(r) = 1 there): 0
+    // for a term that asks for none.
+    virtual PairTotals tail(const std::vector<Species>& /*table*/,
+                            const std::vector<double>& /*counts*/, double /*volume*/) const {
+        return {};
+    }
     // The term's share of the pressure that is not a pair virial: the swim pressure of an
     // active force, from the unwrapped displacements since `start` (indexed by tag).
     virtual double swim_pressure(const SoftState<D>&, const std::vector<Vec<D>>& /*start*/) const {
