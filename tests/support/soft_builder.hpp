@@ -31,7 +31,7 @@ SoftState<D> random_soft_system(std::size_t n, double L, double radius = 1.0,
         while (!free) { // brute force: these systems are small
             for (int a = 0; a < D; ++a) s.p.position[i][a] = rng.uniform(-0.5 * L, 0.5 * L);
             free = true;
-            for (std::size_t j = 0; j < i && free; ++j)
+            for (std::size_t j = 0; j < i && free && min_distance > 0.0; ++j)
                 free = norm2(s.box.minimum_image(s.p.position[i] - s.p.position[j])) >=
                        min_distance * min_distance;
         }

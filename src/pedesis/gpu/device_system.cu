@@ -5,6 +5,7 @@
 // soft/pair_potentials.hpp, the Philox stream keyed by (seed, stream, tag, step) with the
 // same Box-Muller and sin/cos (core/sincos.hpp), the integrators' per-species tables.
 #include "pedesis/core/sincos.hpp"
+#include "pedesis/core/sphere_rotation.hpp"
 #include "pedesis/gpu/device_system.hpp"
 
 #include <Random123/philox.h>
@@ -437,17 +438,10 @@ __global__ void k_poststep(StepArgs a, double* pos, double* vel, double* dir, co
             if (a.rot_noisy && c.rot_kick > 0.0) {
                 double z[3];
                 normals<3>(a.rotation_seed, stream_orientation, tag[i], a.step, z);
-                for (int k = 0; k < 3; ++k) w[k] += c.rot_kick * z[k];
+                const double amplitude = c.rot_kick * sphere_kick_scale(c.rot_kick);
+                for (int k = 0; k < 3; ++k) w[k] += amplitude * z[k];
             }
-            // d += w x d, as the CPU's cross(w, d)
-            const double x0 = w[1] * d.c[2] - w[2] * d.c[1];
-            const double x1 = w[2] * d.c[0] - w[0] * d.c[2];
-            const double x2 = w[0] * d.c[1] - w[1] * d.c[0];
-            d.c[0] += x0;
-            d.c[1] += x1;
-            d.c[2] += x2;
-            const double inv = 1.0 / sqrt(norm2(d));
-            for (int k = 0; k < D; ++k) d.c[k] *= inv;
+            rotate_on_sphere(w, d.c); // as the CPU's step
         }
         store<D>(dir, i, d);
     }

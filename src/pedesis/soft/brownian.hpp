@@ -2,11 +2,14 @@
 // Overdamped integrators of the ABP tutorial, Euler-Maruyama:
 //   brownian:          r += dt F / gamma + sqrt(2 T dt / gamma) xi
 //   brownian_rotation: theta += dt tau / gamma + sqrt(2 T dt / gamma) xi  (2D),
-//                      n += dt (tau x n) / gamma + sqrt(2 D_r dt) (xi x n), renormalised (3D)
+//                      n turned by w = dt tau / gamma + sqrt(2 D_r dt) s xi about the
+//                      axis of w's part normal to n, by its length (3D; the noise scaled
+//                      by s = sqrt(1 - D_r dt / 3) for second order: core/sphere_rotation.hpp)
 // with D = T / gamma. The noise of particle i at step s is drawn from Philox keyed by
 // (seed, stream, tag, s): the trajectory does not depend on thread count or storage order.
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
+#include "pedesis/core/sphere_rotation.hpp"
 #include "pedesis/soft/batch_normals.hpp"
 #include "pedesis/soft/blow_up.hpp"
 #include "pedesis/soft/per_species.hpp"
@@ -168,12 +171,13 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
                 for (int k = 0; k < m; ++k) {
                     const std::int64_t i = first + k;
                     const double kick = kick_of[sp[i]];
-                    Vec<D> w = drift_of[sp[i]] * s.torque[i]; // angular displacement
-                    if (kick > 0.0)
-                        for (int a = 0; a < D; ++a) w[a] += kick * z[k * per + a];
-                    Vec<D>& d = s.director[i];
-                    d += cross(w, d);
-                    d *= 1.0 / norm(d);
+                    double w[3]; // angular displacement
+                    for (int a = 0; a < 3; ++a) w[a] = drift_of[sp[i]] * s.torque[i][a];
+                    if (kick > 0.0) {
+                        const double amplitude = kick * sphere_kick_scale(kick);
+                        for (int a = 0; a < 3; ++a) w[a] += amplitude * z[k * per + a];
+                    }
+                    rotate_on_sphere(w, s.director[i]);
                 }
             }
         }
