@@ -3,12 +3,20 @@ session, in a fresh directory outside the repository (so that no path may lean o
 source tree). Fails with the block's line in the document and the error.
 
     /usr/bin/python3 tests/docs/run_doc_snippets.py docs/python.md
+    /usr/bin/python3 tests/docs/run_doc_snippets.py README.md \
+        --setup 'pedesis run SRC/examples/course_1_relaxation.toml --out runs/demo'
+
+--setup runs a shell command in that directory first (the run directories a document
+takes as made, as `make demo` makes runs/demo); SRC in it is the source tree, and
+`pedesis` is $PEDESIS_BIN.
 """
 import contextlib
 import io
 import os
 import pathlib
 import re
+import shlex
+import subprocess
 import sys
 import tempfile
 import traceback
@@ -21,7 +29,21 @@ def blocks(text):
         yield text.count("\n", 0, match.start()) + 2, match.group(1)
 
 
-def main(doc):
+def prepare(commands):
+    source = str(pathlib.Path(__file__).resolve().parents[2])
+    binary = os.environ.get("PEDESIS_BIN", "pedesis")
+    for command in commands:
+        words = [w.replace("SRC", source) for w in shlex.split(command)]
+        if words and words[0] == "pedesis":
+            words[0] = binary
+        done = subprocess.run(words, capture_output=True, text=True)
+        if done.returncode != 0:
+            print(f"setup {command!r} failed:\n{done.stderr}", file=sys.stderr)
+            return False
+    return True
+
+
+def main(doc, setup=()):
     text = pathlib.Path(doc).read_text(encoding="utf-8")
     found = list(blocks(text))
     if not found:
@@ -30,6 +52,8 @@ def main(doc):
     namespace = {"__name__": "__main__"}
     with tempfile.TemporaryDirectory(prefix="pedesis_doc_") as scratch:
         os.chdir(scratch)
+        if not prepare(setup):
+            return 1
         for line, code in found:
             out = io.StringIO()
             try:
@@ -44,4 +68,10 @@ def main(doc):
 
 
 if __name__ == "__main__":
-    sys.exit(max(main(d) for d in sys.argv[1:]) if len(sys.argv) > 1 else 2)
+    import argparse
+    parser = argparse.ArgumentParser(description="Run a document's Python blocks.")
+    parser.add_argument("documents", nargs="+")
+    parser.add_argument("--setup", action="append", default=[],
+                        help="a command to run in the scratch directory first")
+    arguments = parser.parse_args()
+    sys.exit(max(main(d, arguments.setup) for d in arguments.documents))
