@@ -12,8 +12,9 @@
 
 Frames are dicts laid out as Simulation.frame() gives them (numpy arrays in tag order).
 A recording with a file writes it whole, by the engines' own writers, each time run()
-or evolve() returns: the file is then complete, and the frames stay in memory (about
-2 dim x 8 bytes per particle and frame). A long run meant for disk is a Simulation with
+or evolve() returns with new frames: the file is then complete, and the frames stay in
+memory (about 2 dim x 8 bytes per particle and frame). Each write costs all the frames
+so far, so a file grows quadratically in work when evolve() is called step by step. A long run meant for disk is a Simulation with
 a GSDWriter (docs/python.md), which writes as it goes.
 """
 import functools
@@ -57,14 +58,18 @@ class Recording:
             if not os.path.isdir(parent):
                 raise FileNotFoundError(f"{self.file}: no such directory {parent}")
         self.recording = True
+        self._saved = 0  # frames in the file
 
     def _take(self, frame):
         if self.recording:
             self.frames.append(frame)
 
     def _written(self):
-        if self.file is not None and self.frames:
+        # (only when frames came since the last write: an evolve() loop that took none
+        # must not rewrite the file at every step)
+        if self.file is not None and self.frames and len(self.frames) != self._saved:
             self.save(self.file, self._format)
+            self._saved = len(self.frames)
 
     def stop(self):
         """Takes no more frames (the file, if any, keeps those taken)."""

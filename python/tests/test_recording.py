@@ -150,3 +150,19 @@ def test_inline_view_holds_the_frames():
     s_html = pedesis.Gas(
         "dimension = 2\n[box]\nlength = 10.0\n[[species]]\nname = 'a'\ncount = 5\n")
     assert s_html._repr_html_().startswith("<iframe")  # no recording: the state now
+
+
+def test_a_file_is_written_when_frames_come_and_only_then(evolver, tmp_path):
+    e = evolver()
+    path = tmp_path / "abp.gsd"
+    e.record(steps=10, file=path)
+    e.evolve(0.01)  # step 1: the first frame (step 0) is written now
+    with gsd.hoomd.open(str(path), "rb") as t:
+        assert len(t) == 1
+    path.unlink()
+    for _ in range(8):  # steps 2 to 9: no new frame, so no write
+        e.evolve(0.01)
+    assert not path.exists()
+    e.evolve(0.01)  # step 10: a frame, and the file again, whole
+    with gsd.hoomd.open(str(path), "rb") as t:
+        assert [int(f.configuration.step) for f in t] == [0, 10]
