@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
+#include "pedesis/core/simd_level.hpp"
 #include "pedesis/gpu/gpu_stepper.hpp"
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/soft/brownian.hpp"
@@ -243,6 +244,7 @@ void time_and_report(SoftState<D>& s, Evolver<D>& e, const BenchAbpOptions& o, d
                    "max_rss_bytes_per_particle: {:.1f}\n",
                    state / nd, list / nd, max_rss_bytes() / nd);
     }
+    if (!e.device()) fmt::print("cpu_kernels: {}\n", simd_name(simd_level()));
     fmt::print("state_checksum: {:016x}\n", state_checksum(s));
     fmt::print("particle_steps_per_second: {:.0f}\n", particle_steps / seconds);
     if (!e.device()) fmt::print("bytes_per_particle: {:.1f}\n", (state + list) / nd);

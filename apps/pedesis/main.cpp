@@ -13,6 +13,7 @@
 #include "pedesis/core/error.hpp"
 
 #if PEDESIS_HAVE_GRAPHICS
+#include "pedesis/core/simd_level.hpp"
 #include "render_command.hpp"
 #include "view_command.hpp"
 #endif
@@ -25,10 +26,24 @@
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
+#include <string>
 
 int main(int argc, char** argv) {
     CLI::App app{"pedesis: particle dynamics of gases and active matter"};
-    app.set_version_flag("--version", "pedesis " PEDESIS_VERSION " (commit " PEDESIS_COMMIT ")");
+    pedesis::SimdLevel kernels;
+    try { // PEDESIS_SIMD is checked once, before anything runs
+        kernels = pedesis::simd_level();
+    } catch (const std::invalid_argument& e) {
+        fmt::print(stderr, "pedesis: error: {}\n", e.what());
+        return pedesis::exit_input_error;
+    }
+    std::string this_cpu;
+    for (const pedesis::SimdLevel l : pedesis::available_simd_levels())
+        this_cpu += (this_cpu.empty() ? "" : ", ") + std::string(pedesis::simd_name(l));
+    app.set_version_flag("--version", fmt::format("pedesis " PEDESIS_VERSION
+                                                  " (commit " PEDESIS_COMMIT ")\nCPU kernels: {} "
+                                                  "(this CPU runs: {}; PEDESIS_SIMD chooses)",
+                                                  pedesis::simd_name(kernels), this_cpu));
     app.require_subcommand(1);
     pedesis::cli::add_run_command(app);
     pedesis::cli::add_sweep_command(app);

@@ -147,7 +147,7 @@ print(json.dumps({"file": pedesis.__file__, "binary": binary(), "stop": stop,
 def test_the_command_in_the_venvs_bin(installed):
     i = installed
     version = run([i.command, "--version"], cwd=i.home).stdout
-    assert re.fullmatch(r"pedesis \S+ \(commit .*\)\n", version), version
+    assert re.fullmatch(r"pedesis \S+ \(commit .*\)\nCPU kernels: \S+ \(.*\)\n", version), version
     run([i.command, "run", "tiny.toml", "--out", "runs/from_cli"], cwd=i.home)
     summary = json.loads((i.home / "runs" / "from_cli" / "summary.json").read_text())
     assert summary["stopped_by"] == "time"

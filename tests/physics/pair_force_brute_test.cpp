@@ -4,7 +4,7 @@
 // one radius and with two. The two sums add the same pair forces in different orders,
 // so they agree to rounding: 1e-12 of the sum of the pair forces' magnitudes on each
 // particle (a missing or doubled pair would show at order 1).
-#include "support/soft_builder.hpp"
+#include "support/pair_cases.hpp"
 
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/pair_force.hpp"
@@ -47,41 +47,16 @@ void check_against_brute_force(SoftState<D> s, const Pair& pair, double skin,
     EXPECT_EQ(bad, 0u) << "particles whose force differs from the brute-force sum";
 }
 
-// n particles in a periodic box at number density rho, at least `gap` apart; with
-// `two_radii` every third particle has radius 0.35 instead of 0.5.
-template <int D>
-SoftState<D> system(std::size_t n, double rho, bool two_radii, std::uint64_t seed) {
-    const double L = std::pow(static_cast<double>(n) / rho, 1.0 / D);
-    auto s = test::random_soft_system<D>(n, L, 0.5, seed, 0.75);
-    if (two_radii) {
-        s.p.species_table.push_back(Species{"B", 0.35, 1.0});
-        for (std::size_t i = 0; i < s.size(); i += 3) s.p.species[i] = 1;
-    }
-    return s;
-}
-
-template <int D> void all_cases() {
-    const std::size_t n = D == 2 ? 900 : 1000;
-    for (bool two : {false, true}) {
-        const std::string radii = two ? " two radii" : " one radius";
-        // Lennard-Jones at 2.5 sigma, dense: more than 8 particles per r_list^D, so the
-        // list uses cells of r_list / 2 and a stencil two deep
-        check_against_brute_force(system<D>(n, D == 2 ? 0.7 : 0.8, two, 3), LjPair{1.0, -1.0, 2.5},
-                                  0.3, "lj" + radii);
-        // WCA and harmonic: short range, cells of r_list
-        check_against_brute_force(system<D>(n, D == 2 ? 0.7 : 0.8, two, 4), WcaPair{1.0, -1.0}, 0.3,
-                                  "wca" + radii);
-        check_against_brute_force(system<D>(n, 0.4, two, 5), HarmonicPair{10.0, 2.0}, 1.0,
-                                  "harmonic" + radii);
-    }
-}
-
 } // namespace
 
 TEST(PairForceBruteForce, TwoDimensions) {
-    all_cases<2>();
+    test::for_each_pair_case<2>([](auto s, const auto& pair, double skin, const std::string& what) {
+        check_against_brute_force(std::move(s), pair, skin, what);
+    });
 }
 
 TEST(PairForceBruteForce, ThreeDimensions) {
-    all_cases<3>();
+    test::for_each_pair_case<3>([](auto s, const auto& pair, double skin, const std::string& what) {
+        check_against_brute_force(std::move(s), pair, skin, what);
+    });
 }

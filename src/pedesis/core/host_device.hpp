@@ -7,3 +7,13 @@
 #else
 #define PEDESIS_HD
 #endif
+
+// The same, always inlined: for functions the CPU's SIMD kernels call with vector types
+// (soft/pair_rows.hpp), which must be compiled inside each kernel for its instruction set.
+#if defined(__CUDACC__)
+#define PEDESIS_HD_INLINE __host__ __device__ __forceinline__
+#elif defined(__GNUC__)
+#define PEDESIS_HD_INLINE [[gnu::always_inline]] inline
+#else
+#define PEDESIS_HD_INLINE inline
+#endif

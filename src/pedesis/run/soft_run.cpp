@@ -1,6 +1,7 @@
 #include "pedesis/run/soft_run.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/simd_level.hpp"
 #include "pedesis/gpu/gpu_stepper.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/observe/soft_observables.hpp"
@@ -217,6 +218,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         }
         if (const auto* device = evolver_->device())
             console_ << fmt::format("  on the GPU: {}\n", device->description());
+        else
+            console_ << fmt::format("  CPU kernels: {}\n", simd_name(simd_level()));
         if (fresh) evolver_->compute_forces(); // so that frame 0 shows them; the step reuses them
         whole_current_ = false;
         wall_start_ = std::chrono::steady_clock::now();
@@ -251,6 +254,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         j["dimension"] = D;
         j["dynamics"] = c_.dynamics;
         j["device"] = on_gpu() ? "gpu" : "cpu";
+        if (!on_gpu()) j["cpu_kernels"] = simd_name(simd_level());
         j["particles"] = particles_;
         j["steps"] = state_.step;
         j["time"] = state_.time;

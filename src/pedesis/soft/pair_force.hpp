@@ -8,6 +8,7 @@
 // evaluator per species pair, a symmetric table. When all entries are equal and all
 // radii too (one species, the common case) the loop takes one evaluator and never reads
 // a neighbour's species.
+#include "pedesis/soft/pair_rows.hpp"
 #include "pedesis/soft/plugins.hpp"
 
 #include <algorithm>
@@ -103,99 +104,24 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
     }
 
   private:
-    // Candidates are filtered in chunks: those within the pair's largest range are
-    // packed (branch-free) into a buffer and only they are evaluated. A third to a half
-    // of a row lies in the skin, at random, so testing each candidate with a branch
-    // mispredicted often; evaluating the packed ones keeps list order, so the sums are the same
-    // whatever the thread count.
-    static constexpr int chunk = 32;
-
-    // With one radius for all species (the common case) the sum of radii is a constant
-    // and the rows never read the species of a neighbour.
     template <bool Uniform> void add_rows(SoftState<D>& s, const NeighborList<D>& nl) const {
-        const Vec<D>* pos = s.p.position.data();
-        const std::uint16_t* sp = s.p.species.data();
-        const Species* table = s.p.species_table.data();
-        const Pair* pairs = pairs_.data();
-        const std::size_t ns = species_;
+        PairRowsInput<D, Pair> in{s.p.position.data(),
+                                  s.p.species.data(),
+                                  s.p.species_table.data(),
+                                  pairs_.data(),
+                                  species_,
+                                  0.0,
+                                  s.force.data(),
+                                  &s.box,
+                                  &nl,
+                                  {}};
         const double rc = range(s);
-        const double rc2 = rc * rc;
-        Vec<D>* force = s.force.data();
-        const Box<D>& box = s.box;
-        // Rows of particles this far inside every periodic face need no minimum image.
-        std::array<double, D> inner;
+        in.range2 = rc * rc;
         for (int a = 0; a < D; ++a)
-            inner[a] = box.periodic(a) ? box.hi(a) - nl.image_free_margin()
-                                       : std::numeric_limits<double>::infinity();
-        nl.for_each_chunk([&](std::span<const std::uint32_t> rows) {
-            for (const std::uint32_t i : rows) {
-                const Vec<D> ri = pos[i];
-                const double rad_i = table[sp[i]].radius;
-                const Pair* pair_row = pairs + (Uniform || ns == 1 ? 0 : sp[i] * ns);
-                bool interior = true;
-                for (int a = 0; a < D; ++a) interior = interior && std::abs(ri[a]) < inner[a];
-                Vec<D> f{};
-                // plain arrays: a std::array of Vec would be zeroed for every row
-                double dbuf[chunk][D], r2buf[chunk], rsbuf[chunk];
-                std::uint32_t jbuf[chunk];
-                std::uint16_t sbuf[chunk]; // the neighbours' species (non-uniform path)
-                for (const std::uint32_t* it = nl.begin(i); it != nl.end(i);) {
-                    const std::uint32_t* const stop =
-                        it + std::min<std::ptrdiff_t>(chunk, nl.end(i) - it);
-                    int m = 0;
-                    if (interior)
-                        for (; it != stop; ++it) {
-                            const Vec<D> d = ri - pos[*it];
-                            if constexpr (!Uniform) sbuf[m] = sp[*it];
-                            pack(d, *it, Uniform ? 0.0 : rad_i + table[sp[*it]].radius, rc2, dbuf,
-                                 r2buf, rsbuf, jbuf, m);
-                        }
-                    else
-                        for (; it != stop; ++it) {
-                            const Vec<D> d = box.minimum_image(ri - pos[*it]);
-                            if constexpr (!Uniform) sbuf[m] = sp[*it];
-                            pack(d, *it, Uniform ? 0.0 : rad_i + table[sp[*it]].radius, rc2, dbuf,
-                                 r2buf, rsbuf, jbuf, m);
-                        }
-                    double frbuf[chunk];
-                    if constexpr (Uniform) {
-                        // Every packed pair lies within the one range: F/r for all of them in
-                        // a loop without branches (several pairs per SIMD instruction).
-                        const double rsum_uniform = 2.0 * rad_i;
-                        const Pair& pair = pairs[0];
-                        for (int q = 0; q < m; ++q)
-                            frbuf[q] = pair.force_over_r(r2buf[q], rsum_uniform);
-                    } else {
-                        for (int q = 0; q < m; ++q) {
-                            double energy;
-                            const Pair& pair = pair_row[ns == 1 ? 0 : sbuf[q]];
-                            if (!pair.eval(r2buf[q], rsbuf[q], frbuf[q], energy)) frbuf[q] = 0.0;
-                        }
-                    }
-                    // summed in list order; each neighbour gets the opposite force
-                    for (int q = 0; q < m; ++q) {
-                        Vec<D>& fj = force[jbuf[q]];
-                        for (int a = 0; a < D; ++a) {
-                            const double fa = frbuf[q] * dbuf[q][a];
-                            f[a] += fa;
-                            fj[a] -= fa;
-                        }
-                    }
-                }
-                force[i] += f;
-            }
-        });
-    }
-
-    static void pack(const Vec<D>& d, std::uint32_t j, double rsum, double rc2,
-                     double (&dbuf)[chunk][D], double (&r2buf)[chunk], double (&rsbuf)[chunk],
-                     std::uint32_t (&jbuf)[chunk], int& m) {
-        const double r2 = detail::squared_length(d);
-        for (int a = 0; a < D; ++a) dbuf[m][a] = d[a];
-        r2buf[m] = r2;
-        rsbuf[m] = rsum;
-        jbuf[m] = j;
-        m += r2 < rc2;
+            in.inner[a] = s.box.periodic(a) ? s.box.hi(a) - nl.image_free_margin()
+                                            : std::numeric_limits<double>::infinity();
+        const auto rows = pair_rows_for<D, Pair, Uniform>(simd_level());
+        nl.for_each_chunk([&](std::span<const std::uint32_t> chunk) { rows(in, chunk); });
     }
 
     std::size_t index(std::size_t a, std::size_t b) const {

@@ -18,10 +18,11 @@ namespace pedesis {
 // Lennard-Jones F/r = 24 eps (2 (s/r)^12 - (s/r)^6) / r^2, shared by wca and lj. One
 // division per pair (1/r^2, then products): divisions are the slowest operation of the
 // pair loop.
-PEDESIS_HD inline double lj_force_over_r(double epsilon, double s, double r2) {
-    const double inv_r2 = 1.0 / r2;
-    const double x2 = s * s * inv_r2;
-    const double x6 = x2 * x2 * x2;
+// T is double, or a vector of doubles in the CPU's SIMD kernels (soft/pair_rows.hpp).
+template <class T> PEDESIS_HD_INLINE T lj_force_over_r(double epsilon, double s, T r2) {
+    const T inv_r2 = 1.0 / r2;
+    const T x2 = s * s * inv_r2;
+    const T x6 = x2 * x2 * x2;
     return 24.0 * epsilon * (2.0 * x6 * x6 - x6) * inv_r2;
 }
 
@@ -36,7 +37,10 @@ struct HarmonicPair {
     double max_range(double max_rsum) const { return range(max_rsum); }
     // F/r for a pair inside the range (the pair loop filters by range first)
     PEDESIS_HD double force_over_r(double r2, double rsum) const {
-        const double r = std::sqrt(r2);
+        return force_over_r_at(std::sqrt(r2), rsum);
+    }
+    // the same from the distance r (T: double or a SIMD vector of them)
+    template <class T> PEDESIS_HD_INLINE T force_over_r_at(T r, double rsum) const {
         return k * (range(rsum) - r) / r;
     }
     PEDESIS_HD bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
@@ -58,7 +62,7 @@ struct WcaPair {
     bool operator==(const WcaPair& o) const { return epsilon == o.epsilon && sigma == o.sigma; }
     PEDESIS_HD double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return std::pow(2.0, 1.0 / 6.0) * sig(max_rsum); }
-    PEDESIS_HD double force_over_r(double r2, double rsum) const {
+    template <class T> PEDESIS_HD_INLINE T force_over_r(T r2, double rsum) const {
         return lj_force_over_r(epsilon, sig(rsum), r2);
     }
     PEDESIS_HD bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
@@ -107,7 +111,7 @@ struct LjPair {
     }
     PEDESIS_HD double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return cutoff * sig(max_rsum); }
-    PEDESIS_HD double force_over_r(double r2, double rsum) const {
+    template <class T> PEDESIS_HD_INLINE T force_over_r(T r2, double rsum) const {
         return lj_force_over_r(epsilon, sig(rsum), r2);
     }
     PEDESIS_HD bool eval(double r2, double rsum, double& f_over_r, double& energy) const {

@@ -1,0 +1,250 @@
+#pragma once
+// The pair loop's rows, compiled once per kernel set (core/simd_level.hpp): pair_rows is
+// written once and inlined into one wrapper per set, so the compiler vectorises the F/r
+// loop (and the packing) with that set's registers, and the choice is made once per force
+// evaluation, not per pair.
+//
+// Candidates are filtered in chunks: those within the pair's largest range are packed
+// (branch-free) into a buffer and only they are evaluated. A third to a half of a row
+// lies in the skin, at random, so testing each candidate with a branch mispredicted
+// often; evaluating the packed ones keeps list order, so the sums are the same whatever
+// the thread count.
+#include "pedesis/core/box.hpp"
+#include "pedesis/core/simd_level.hpp"
+#include "pedesis/core/species.hpp"
+#include "pedesis/spatial/neighbor_list.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <span>
+
+namespace pedesis {
+
+// What the rows read and write; one per force evaluation.
+template <int D, class Pair> struct PairRowsInput {
+    const Vec<D>* position;
+    const std::uint16_t* species;
+    const Species* table;
+    const Pair* pairs;         // pairs[a * species_count + b]
+    std::size_t species_count; // 1: one evaluator for all
+    double range2;             // the largest range, squared
+    Vec<D>* force;
+    const Box<D>* box;
+    const NeighborList<D>* list;
+    // rows of particles this far inside every periodic face need no minimum image
+    std::array<double, D> inner;
+};
+
+namespace detail {
+
+inline constexpr int pair_chunk = 32;
+
+template <int D>
+[[gnu::always_inline]] inline void
+pack_candidate(const Vec<D>& d, std::uint32_t j, double rsum, double rc2,
+               double (&dbuf)[pair_chunk][D], double (&r2buf)[pair_chunk],
+               double (&rsbuf)[pair_chunk], std::uint32_t (&jbuf)[pair_chunk], int& m) {
+    const double r2 = squared_length(d);
+    for (int a = 0; a < D; ++a) dbuf[m][a] = d[a];
+    r2buf[m] = r2;
+    rsbuf[m] = rsum;
+    jbuf[m] = j;
+    m += r2 < rc2;
+}
+
+// With one radius for all species (Uniform, the common case) the sum of radii is a
+// constant and the rows never read the species of a neighbour.
+template <int D, class Pair, bool Uniform>
+[[gnu::always_inline]] inline void pair_rows(const PairRowsInput<D, Pair>& in,
+                                             std::span<const std::uint32_t> rows) {
+    constexpr int chunk = pair_chunk;
+    const Vec<D>* pos = in.position;
+    const std::uint16_t* sp = in.species;
+    const Species* table = in.table;
+    const std::size_t ns = in.species_count;
+    const double rc2 = in.range2;
+    const Box<D>& box = *in.box;
+    const NeighborList<D>& nl = *in.list;
+    Vec<D>* force = in.force;
+    for (const std::uint32_t i : rows) {
+        const Vec<D> ri = pos[i];
+        const double rad_i = table[sp[i]].radius;
+        const Pair* pair_row = in.pairs + (Uniform || ns == 1 ? 0 : sp[i] * ns);
+        bool interior = true;
+        for (int a = 0; a < D; ++a) interior = interior && std::abs(ri[a]) < in.inner[a];
+        Vec<D> f{};
+        // plain arrays: a std::array of Vec would be zeroed for every row
+        double dbuf[chunk][D], r2buf[chunk], rsbuf[chunk];
+        std::uint32_t jbuf[chunk];
+        std::uint16_t sbuf[chunk]; // the neighbours' species (non-uniform path)
+        for (const std::uint32_t* it = nl.begin(i); it != nl.end(i);) {
+            const std::uint32_t* const stop = it + std::min<std::ptrdiff_t>(chunk, nl.end(i) - it);
+            int m = 0;
+            if (interior)
+                for (; it != stop; ++it) {
+                    const Vec<D> d = ri - pos[*it];
+                    if constexpr (!Uniform) sbuf[m] = sp[*it];
+                    pack_candidate<D>(d, *it, Uniform ? 0.0 : rad_i + table[sp[*it]].radius, rc2,
+                                      dbuf, r2buf, rsbuf, jbuf, m);
+                }
+            else
+                for (; it != stop; ++it) {
+                    const Vec<D> d = box.minimum_image(ri - pos[*it]);
+                    if constexpr (!Uniform) sbuf[m] = sp[*it];
+                    pack_candidate<D>(d, *it, Uniform ? 0.0 : rad_i + table[sp[*it]].radius, rc2,
+                                      dbuf, r2buf, rsbuf, jbuf, m);
+                }
+            double frbuf[chunk];
+            if constexpr (Uniform) {
+                // Every packed pair lies within the one range: F/r for all of them in a
+                // loop without branches (several pairs per SIMD instruction).
+                const double rsum_uniform = 2.0 * rad_i;
+                const Pair& pair = in.pairs[0];
+                for (int q = 0; q < m; ++q) frbuf[q] = pair.force_over_r(r2buf[q], rsum_uniform);
+            } else {
+                for (int q = 0; q < m; ++q) {
+                    double energy;
+                    const Pair& pair = pair_row[ns == 1 ? 0 : sbuf[q]];
+                    if (!pair.eval(r2buf[q], rsbuf[q], frbuf[q], energy)) frbuf[q] = 0.0;
+                }
+            }
+            // summed in list order; each neighbour gets the opposite force
+            for (int q = 0; q < m; ++q) {
+                Vec<D>& fj = force[jbuf[q]];
+                for (int a = 0; a < D; ++a) {
+                    const double fa = frbuf[q] * dbuf[q][a];
+                    f[a] += fa;
+                    fj[a] -= fa;
+                }
+            }
+        }
+        force[i] += f;
+    }
+}
+
+// The SIMD kernel for one radius and one evaluator (the common case): four candidates at
+// a time in GCC's vector types, which each wrapper compiles for its own registers (AVX2:
+// one ymm per four; AVX-512: the same with masks). Candidates beyond the range are
+// computed too and their force zeroed, which costs less than packing them away once four
+// lanes share an instruction. Each row's own force is summed per lane and the four lanes
+// added at the end, in a fixed order: bit-identical for any thread count, not equal in
+// the last bits to pair_rows (the sse2 set).
+using lanes4 = double __attribute__((vector_size(32)));
+using mask4 = std::int64_t __attribute__((vector_size(32)));
+
+[[gnu::always_inline]] inline lanes4 lane_sqrt(lanes4 x) {
+    lanes4 r;
+    for (int l = 0; l < 4; ++l) r[l] = std::sqrt(x[l]);
+    return r;
+}
+
+[[gnu::always_inline]] inline lanes4 select(mask4 m, lanes4 yes, lanes4 no) {
+    return reinterpret_cast<lanes4>((reinterpret_cast<mask4>(yes) & m) |
+                                    (reinterpret_cast<mask4>(no) & ~m));
+}
+
+template <class Pair>
+[[gnu::always_inline]] inline lanes4 lanes_force_over_r(const Pair& pair, lanes4 r2, double rsum) {
+    if constexpr (requires { pair.force_over_r_at(r2, rsum); })
+        return pair.force_over_r_at(lane_sqrt(r2), rsum);
+    else
+        return pair.force_over_r(r2, rsum);
+}
+
+template <int D, class Pair>
+[[gnu::always_inline]] inline void pair_rows_lanes(const PairRowsInput<D, Pair>& in,
+                                                   std::span<const std::uint32_t> rows) {
+    const Vec<D>* pos = in.position;
+    const NeighborList<D>& nl = *in.list;
+    const Pair& pair = in.pairs[0];
+    const double rc2 = in.range2;
+    Vec<D>* force = in.force;
+    // the minimum image as the box makes it: d -= L where d > L/2, d += L where d < -L/2
+    lanes4 half[D], length[D];
+    for (int a = 0; a < D; ++a) {
+        const bool periodic = in.box->periodic(a);
+        half[a] = lanes4{} + (periodic ? in.box->hi(a) : std::numeric_limits<double>::infinity());
+        length[a] = lanes4{} + (periodic ? in.box->length(a) : 0.0);
+    }
+    const mask4 lane = {0, 1, 2, 3};
+    const lanes4 one = lanes4{} + 1.0;
+    for (const std::uint32_t i : rows) {
+        const Vec<D> ri = pos[i];
+        const double rsum = 2.0 * in.table[in.species[i]].radius;
+        bool interior = true;
+        for (int a = 0; a < D; ++a) interior = interior && std::abs(ri[a]) < in.inner[a];
+        lanes4 fi[D] = {};
+        const std::uint32_t* const end = nl.end(i);
+        for (const std::uint32_t* it = nl.begin(i); it < end; it += 4) {
+            const std::ptrdiff_t left = end - it;
+            // lanes past the row's end repeat its first candidate, with no force
+            std::uint32_t j[4];
+            for (int l = 0; l < 4; ++l) j[l] = it[l < left ? l : 0];
+            lanes4 d[D];
+            for (int a = 0; a < D; ++a) {
+                const lanes4 pa = {pos[j[0]][a], pos[j[1]][a], pos[j[2]][a], pos[j[3]][a]};
+                d[a] = ri[a] - pa;
+                if (!interior) {
+                    d[a] = d[a] - select(d[a] > half[a], length[a], lanes4{});
+                    d[a] = d[a] + select(d[a] < -half[a], length[a], lanes4{});
+                }
+            }
+            lanes4 r2 = d[0] * d[0];
+            for (int a = 1; a < D; ++a) r2 += d[a] * d[a];
+            const mask4 active = (r2 < rc2) & (lane < left);
+            const lanes4 fr =
+                select(active, lanes_force_over_r(pair, select(active, r2, one), rsum), lanes4{});
+            lanes4 fa[D];
+            for (int a = 0; a < D; ++a) {
+                fa[a] = fr * d[a];
+                fi[a] += fa[a];
+            }
+            for (int l = 0; l < 4; ++l)
+                for (int a = 0; a < D; ++a) force[j[l]][a] -= fa[a][l];
+        }
+        for (int a = 0; a < D; ++a) force[i][a] += (fi[a][0] + fi[a][1]) + (fi[a][2] + fi[a][3]);
+    }
+}
+
+template <int D, class Pair, bool Uniform>
+void pair_rows_sse2(const PairRowsInput<D, Pair>& in, std::span<const std::uint32_t> rows) {
+    pair_rows<D, Pair, Uniform>(in, rows);
+}
+
+#if PEDESIS_SIMD_DISPATCH
+template <int D, class Pair, bool Uniform>
+PEDESIS_SIMD_TARGET_AVX2 void pair_rows_avx2(const PairRowsInput<D, Pair>& in,
+                                             std::span<const std::uint32_t> rows) {
+    if constexpr (Uniform)
+        pair_rows_lanes<D, Pair>(in, rows);
+    else
+        pair_rows<D, Pair, Uniform>(in, rows);
+}
+template <int D, class Pair, bool Uniform>
+PEDESIS_SIMD_TARGET_AVX512 void pair_rows_avx512(const PairRowsInput<D, Pair>& in,
+                                                 std::span<const std::uint32_t> rows) {
+    if constexpr (Uniform)
+        pair_rows_lanes<D, Pair>(in, rows);
+    else
+        pair_rows<D, Pair, Uniform>(in, rows);
+}
+#endif
+
+} // namespace detail
+
+// The rows' function for the kernel set in use.
+template <int D, class Pair, bool Uniform>
+auto pair_rows_for(SimdLevel level)
+    -> void (*)(const PairRowsInput<D, Pair>&, std::span<const std::uint32_t>) {
+#if PEDESIS_SIMD_DISPATCH
+    if (level == SimdLevel::avx512) return &detail::pair_rows_avx512<D, Pair, Uniform>;
+    if (level == SimdLevel::avx2) return &detail::pair_rows_avx2<D, Pair, Uniform>;
+#endif
+    (void)level;
+    return &detail::pair_rows_sse2<D, Pair, Uniform>;
+}
+
+} // namespace pedesis

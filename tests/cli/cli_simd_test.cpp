@@ -1,0 +1,89 @@
+// PEDESIS_SIMD and what pedesis says about its CPU kernels: --version and a soft run's
+// console and summary name the set in use; an unknown set or one the CPU lacks is bad
+// input (exit 2, one message).
+#include "cli/cli_support.hpp"
+
+#include "pedesis/core/simd_level.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace pedesis::test {
+namespace {
+
+using CpuKernels = ScratchDir;
+
+CliResult with_simd(const std::string& set, const std::string& args,
+                    const std::filesystem::path& dir) {
+    return shell("PEDESIS_SIMD=" + set + " timeout -s KILL 60 '" + std::string(PEDESIS_BINARY) +
+                     "' " + args,
+                 dir);
+}
+
+TEST_F(CpuKernels, VersionNamesTheSetInUse) {
+    for (const SimdLevel level : available_simd_levels()) {
+        const CliResult r = with_simd(simd_name(level), "--version", dir);
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_NE(r.output.find(std::string("CPU kernels: ") + simd_name(level) + " "),
+                  std::string::npos)
+            << r.output;
+    }
+    // without PEDESIS_SIMD: the best this CPU runs
+    const CliResult r = with_simd("", "--version", dir);
+    EXPECT_NE(
+        r.output.find(std::string("CPU kernels: ") + simd_name(available_simd_levels().back())),
+        std::string::npos)
+        << r.output;
+}
+
+TEST_F(CpuKernels, AnUnknownSetOrOneTheCpuLacksIsRefused) {
+    const CliResult unknown = with_simd("avx3", "--version", dir);
+    EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+    EXPECT_NE(unknown.output.find("PEDESIS_SIMD = \"avx3\": not a kernel set"), std::string::npos)
+        << unknown.output;
+    if (available_simd_levels().back() != SimdLevel::avx512) {
+        const CliResult lacking = with_simd("avx512", "--version", dir);
+        EXPECT_EQ(lacking.exit_code, 2) << lacking.output;
+        EXPECT_NE(lacking.output.find("this CPU or build runs only"), std::string::npos)
+            << lacking.output;
+    }
+}
+
+TEST_F(CpuKernels, ASoftRunSaysWhichSetRan) {
+    write("soft.toml", R"(dimension = 3
+dynamics = "langevin"
+seed = 3
+[box]
+length = 8
+[[species]]
+name = "A"
+count = 200
+radius = 0.5
+[[force]]
+name = "harmonic"
+k = 10.0
+[[integrator]]
+name = "langevin"
+T = 1.0
+gamma = 1.0
+[run]
+steps = 20
+dt = 0.002
+[output]
+log_every = 10
+)");
+    for (const SimdLevel level : available_simd_levels()) {
+        const std::string out = std::string("out_") + simd_name(level);
+        const CliResult r = with_simd(simd_name(level), "run soft.toml --out " + out, dir);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_NE(r.output.find(std::string("CPU kernels: ") + simd_name(level)), std::string::npos)
+            << r.output;
+        std::ifstream in(dir / out / "summary.json");
+        const auto summary = nlohmann::json::parse(in);
+        EXPECT_EQ(summary.at("cpu_kernels"), simd_name(level));
+    }
+}
+
+} // namespace
+} // namespace pedesis::test

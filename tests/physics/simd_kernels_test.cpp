@@ -1,0 +1,132 @@
+// The pair loop's kernel sets (core/simd_level.hpp): every set this CPU runs gives the
+// forces of the scalar path (sse2, the reference) to 1e-12 of the sum of the pair
+// forces' magnitudes on each particle, in 2D and 3D, for each pair evaluator, with one
+// radius (the SIMD kernel) and with two (the per-pair path), on random systems and on
+// a perfect lattice; and each set is bit-identical on one thread and on two.
+#include "support/pair_cases.hpp"
+
+#include "pedesis/core/simd_level.hpp"
+#include "pedesis/soft/evolver.hpp"
+#include "pedesis/soft/pair_force.hpp"
+#include "pedesis/soft/pair_potentials.hpp"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace pedesis;
+
+namespace {
+
+// Restores the kernel set in use when a test ends.
+struct KernelSetGuard {
+    SimdLevel saved = simd_level();
+    ~KernelSetGuard() { set_simd_level(saved); }
+};
+
+template <int D, class Pair>
+std::vector<Vec<D>> forces_with(SimdLevel level, SoftState<D> s, const Pair& pair, double skin,
+                                int threads) {
+    set_simd_level(level);
+    omp_set_num_threads(threads);
+    Evolver<D> e(s, skin);
+    e.add_force(std::make_unique<PairForce<D, Pair>>("pair", pair));
+    std::fill(s.force.begin(), s.force.end(), Vec<D>{});
+    e.forces()[0]->add_forces(s, e.neighbor_list());
+    omp_set_num_threads(1);
+    return s.force;
+}
+
+// per particle, the sum of |F_ij| over its interacting pairs (brute force)
+template <int D, class Pair>
+std::vector<double> force_scale(const SoftState<D>& s, const Pair& pair) {
+    std::vector<double> scale(s.size(), 0.0);
+    for (std::size_t i = 0; i < s.size(); ++i)
+        for (std::size_t j = 0; j < s.size(); ++j) {
+            if (j == i) continue;
+            const Vec<D> d = s.box.minimum_image(s.p.position[i] - s.p.position[j]);
+            double f_over_r, energy;
+            if (pair.eval(norm2(d), s.p.radius(i) + s.p.radius(j), f_over_r, energy))
+                scale[i] += std::abs(f_over_r) * norm(d);
+        }
+    return scale;
+}
+
+template <int D, class Pair>
+void check_every_set(const SoftState<D>& s, const Pair& pair, double skin,
+                     const std::string& what) {
+    SCOPED_TRACE(what);
+    const std::vector<Vec<D>> reference = forces_with(SimdLevel::sse2, s, pair, skin, 1);
+    const std::vector<double> scale = force_scale(s, pair);
+    std::size_t interacting = 0;
+    for (double x : scale) interacting += x > 0.0;
+    ASSERT_GT(interacting, s.size() / 2) << "too few particles interact to test anything";
+    for (const SimdLevel level : available_simd_levels()) {
+        SCOPED_TRACE(simd_name(level));
+        const std::vector<Vec<D>> one = forces_with(level, s, pair, skin, 1);
+        const std::vector<Vec<D>> two = forces_with(level, s, pair, skin, 2);
+        std::size_t bad = 0, unequal = 0;
+        for (std::size_t i = 0; i < s.size(); ++i) {
+            bad += !(norm(one[i] - reference[i]) <= 1e-12 * scale[i]);
+            for (int a = 0; a < D; ++a) unequal += one[i][a] != two[i][a];
+        }
+        EXPECT_EQ(bad, 0u) << "particles whose force differs from the scalar path";
+        EXPECT_EQ(unequal, 0u) << "force components that differ between one and two threads";
+    }
+}
+
+} // namespace
+
+TEST(SimdKernels, TheSseSetIsAlwaysThere) {
+    const std::vector<SimdLevel> levels = available_simd_levels();
+    ASSERT_FALSE(levels.empty());
+    EXPECT_EQ(levels.front(), SimdLevel::sse2);
+    EXPECT_EQ(parse_simd_level("avx2"), SimdLevel::avx2);
+    EXPECT_FALSE(parse_simd_level("AVX2").has_value());
+}
+
+TEST(SimdKernels, EverySetGivesTheScalarForces2D) {
+    KernelSetGuard guard;
+    test::for_each_pair_case<2>(
+        [](const auto& s, const auto& pair, double skin, const std::string& what) {
+            check_every_set(s, pair, skin, what);
+        });
+}
+
+TEST(SimdKernels, EverySetGivesTheScalarForces3D) {
+    KernelSetGuard guard;
+    test::for_each_pair_case<3>(
+        [](const auto& s, const auto& pair, double skin, const std::string& what) {
+            check_every_set(s, pair, skin, what);
+        });
+}
+
+// in.lj's fcc lattice (6^3 cells) and a square lattice of spacing 1 in a box of 20, each
+// nudged off its symmetric sites so that forces do not cancel: every row of a lattice has
+// the most candidates, and rows end at every lane of the kernel
+TEST(SimdKernels, EverySetGivesTheScalarForcesOnLattices) {
+    KernelSetGuard guard;
+    SoftState<3> fcc = test::fcc_soft_state(6, 0.8442);
+    for (std::size_t i = 0; i < fcc.size(); ++i) fcc.p.position[i][0] += 1e-3 * std::sin(1.0 * i);
+    check_every_set(fcc, LjPair{1.0, 1.0, 2.5}, 0.3, "lj on fcc");
+    SoftState<2> square = test::random_soft_system<2>(400, 20.0, 0.5, 1);
+    for (std::size_t i = 0; i < square.size(); ++i)
+        square.p.position[i] =
+            Vec<2>{{-10.0 + static_cast<double>(i % 20) + 0.01 * std::cos(1.0 * i),
+                    -10.0 + static_cast<double>(i / 20)}};
+    check_every_set(square, WcaPair{1.0, 1.05}, 0.4, "wca on a square lattice");
+}
+
+TEST(SimdKernels, ASetTheCpuLacksIsRefused) {
+    KernelSetGuard guard;
+    const std::vector<SimdLevel> levels = available_simd_levels();
+    if (levels.back() == SimdLevel::avx512) {
+        // every set is here: nothing to refuse, but each one must be accepted
+        for (SimdLevel l : levels) EXPECT_NO_THROW(set_simd_level(l));
+    } else {
+        EXPECT_THROW(set_simd_level(SimdLevel::avx512), std::invalid_argument);
+    }
+}
