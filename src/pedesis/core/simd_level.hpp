@@ -38,8 +38,12 @@ void set_simd_level(SimdLevel level);
 #if defined(__x86_64__) && defined(__GNUC__)
 #define PEDESIS_SIMD_DISPATCH 1
 #define PEDESIS_SIMD_TARGET_AVX2 [[gnu::target("avx2,fma")]]
-#define PEDESIS_SIMD_TARGET_AVX512                                                                 \
+#if defined(__clang__) // (clang's target attribute has no vector-width preference)
+#define PEDESIS_SIMD_TARGET_AVX512 [[gnu::target("avx512f,avx512dq,avx512vl,avx512bw,avx2,fma")]]
+#else
+#define PEDESIS_SIMD_TARGET_AVX512                                                             \
     [[gnu::target("avx512f,avx512dq,avx512vl,avx512bw,avx2,fma,prefer-vector-width=512")]]
+#endif
 #else
 #define PEDESIS_SIMD_DISPATCH 0
 #endif
