@@ -9,6 +9,7 @@
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/pair_force.hpp"
 #include "pedesis/soft/pair_potentials.hpp"
+#include "pedesis/spatial/neighbor_list.hpp"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -118,6 +119,47 @@ TEST(SimdKernels, EverySetGivesTheScalarForcesOnLattices) {
             Vec<2>{{-10.0 + static_cast<double>(i % 20) + 0.01 * std::cos(1.0 * i),
                     -10.0 + static_cast<double>(i / 20)}};
     check_every_set(square, WcaPair{1.0, 1.05}, 0.4, "wca on a square lattice");
+}
+
+// The list build's inner loop is per set too, and must list the same pairs in the same
+// order in every set (r^2 by the same operations, no fused multiply-add).
+template <int D>
+std::vector<std::vector<std::uint32_t>> rows_with(SimdLevel level, const SoftState<D>& s,
+                                                  double r_cut, double skin) {
+    set_simd_level(level);
+    NeighborList<D> nl(s.box, r_cut, skin);
+    nl.build(s.p.position);
+    std::vector<std::vector<std::uint32_t>> rows(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) rows[i].assign(nl.begin(i), nl.end(i));
+    return rows;
+}
+
+template <int D>
+void check_lists(const SoftState<D>& s, double r_cut, double skin, const std::string& what) {
+    SCOPED_TRACE(what);
+    const auto reference = rows_with(SimdLevel::sse2, s, r_cut, skin);
+    std::size_t entries = 0;
+    for (const auto& r : reference) entries += r.size();
+    ASSERT_GT(entries, s.size()) << "too few pairs to test anything";
+    for (const SimdLevel level : available_simd_levels()) {
+        SCOPED_TRACE(simd_name(level));
+        EXPECT_TRUE(rows_with(level, s, r_cut, skin) == reference)
+            << "rows differ from the scalar build";
+    }
+}
+
+TEST(SimdKernels, EverySetListsTheSamePairsInTheSameOrder) {
+    KernelSetGuard guard;
+    // a square lattice of spacing 1 in a box of 12 with list range 1.5 + 0.5 = 2: pairs
+    // at exactly 2 lie at the range, on cell faces (cells of width 2)
+    SoftState<2> square = test::random_soft_system<2>(144, 12.0, 0.5, 1);
+    for (std::size_t i = 0; i < square.size(); ++i)
+        square.p.position[i] =
+            Vec<2>{{-6.0 + static_cast<double>(i % 12), -6.0 + static_cast<double>(i / 12)}};
+    check_lists(square, 1.5, 0.5, "square lattice, pairs at the range");
+    check_lists(test::fcc_soft_state(6, 0.8442), 2.5, 0.3, "fcc, in.lj");
+    check_lists(test::pair_case_system<3>(1000, 0.8, false, 7), 2.5, 0.3, "random 3D");
+    check_lists(test::pair_case_system<2>(900, 0.7, true, 8), 1.2, 0.4, "random 2D");
 }
 
 TEST(SimdKernels, ASetTheCpuLacksIsRefused) {

@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/stage.hpp"
+#include "pedesis/spatial/near_rows.hpp"
 
 #include <fmt/format.h>
 
@@ -267,6 +268,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
         }
         return false;
     };
+    const auto near_row = detail::near_row_for<D>(simd_level());
     const std::uint32_t* const idx = by_cell_.data();
     const Vec<D>* const ref = ref_.data();
     using Range = std::array<std::uint32_t, 2>;
@@ -382,6 +384,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                 // and keeps every candidate in range; with the full one it keeps those of
                 // higher index.
                 const bool half = half_stencil_;
+                const detail::NearRowInput<D> near_input{ref, idx, range.data(), image, nr, rl2};
                 auto row = [&](auto wrap, std::uint32_t kk, std::uint32_t i, const Vec<D>& ri) {
                     // Branch-free: about a sixth of the candidates hit, at random. Every
                     // candidate is stored and the cursor advances only on a hit; the row
@@ -390,14 +393,18 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     const bool stored = dst != nullptr;
                     if (!stored) dst = sink.data();
                     std::size_t w = 0;
-                    for (int r = 0; r < nr; ++r) {
-                        Vec<D> rs = ri;
-                        for (int a = 0; a < D; ++a) rs[a] += image[r][a];
-                        for (std::uint32_t k = r == 0 && half ? kk + 1 : range[r][0];
-                             k < range[r][1]; ++k) {
-                            const std::uint32_t j = idx[k];
-                            dst[w] = j;
-                            w += (half | (j > i)) & near(wrap, rs, ref[k]);
+                    if (half) {
+                        // (the half stencil never wraps: each range carries its image)
+                        w = near_row(near_input, kk + 1, ri, dst);
+                    } else {
+                        for (int r = 0; r < nr; ++r) {
+                            Vec<D> rs = ri;
+                            for (int a = 0; a < D; ++a) rs[a] += image[r][a];
+                            for (std::uint32_t k = range[r][0]; k < range[r][1]; ++k) {
+                                const std::uint32_t j = idx[k];
+                                dst[w] = j;
+                                w += (j > i) & near(wrap, rs, ref[k]);
+                            }
                         }
                     }
                     lengths[i] = static_cast<std::uint32_t>(w);
