@@ -4,8 +4,8 @@
 // AVX-512 (PEDESIS_SIMD_TARGET_*), and the best set this CPU offers is used unless the
 // environment variable PEDESIS_SIMD names another ("sse2", "avx2", "avx512").
 // Within one set results are bit-identical for any thread count and storage order.
-// Between sets the last bits of forces may differ (AVX2 and AVX-512 fuse multiply-adds);
-// every sum keeps the list's order in all sets.
+// Between sets the last bits of forces differ: AVX2 and AVX-512 fuse multiply-adds and
+// sum a row's own force in four lanes (docs/engines.md, "CPU kernel sets").
 #include <optional>
 #include <string>
 #include <string_view>
@@ -41,7 +41,7 @@ void set_simd_level(SimdLevel level);
 #if defined(__clang__) // (clang's target attribute has no vector-width preference)
 #define PEDESIS_SIMD_TARGET_AVX512 [[gnu::target("avx512f,avx512dq,avx512vl,avx512bw,avx2,fma")]]
 #else
-#define PEDESIS_SIMD_TARGET_AVX512                                                             \
+#define PEDESIS_SIMD_TARGET_AVX512                                                                 \
     [[gnu::target("avx512f,avx512dq,avx512vl,avx512bw,avx2,fma,prefer-vector-width=512")]]
 #endif
 #else

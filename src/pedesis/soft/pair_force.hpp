@@ -105,18 +105,17 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
 
   private:
     template <bool Uniform> void add_rows(SoftState<D>& s, const NeighborList<D>& nl) const {
+        const double rc = range(s);
         PairRowsInput<D, Pair> in{s.p.position.data(),
                                   s.p.species.data(),
                                   s.p.species_table.data(),
                                   pairs_.data(),
                                   species_,
-                                  0.0,
+                                  rc * rc,
                                   s.force.data(),
                                   &s.box,
                                   &nl,
                                   {}};
-        const double rc = range(s);
-        in.range2 = rc * rc;
         for (int a = 0; a < D; ++a)
             in.inner[a] = s.box.periodic(a) ? s.box.hi(a) - nl.image_free_margin()
                                             : std::numeric_limits<double>::infinity();

@@ -1,10 +1,11 @@
 #pragma once
-// The pair loop's rows, compiled once per kernel set (core/simd_level.hpp): pair_rows is
-// written once and inlined into one wrapper per set, so the compiler vectorises the F/r
-// loop (and the packing) with that set's registers, and the choice is made once per force
+// The pair loop's rows, compiled once per kernel set (core/simd_level.hpp). pair_rows (the
+// SSE2 set's path, and every set's for rows of several radii) and pair_rows_lanes (AVX2
+// and AVX-512, rows of one radius) are written once and inlined into one wrapper per set,
+// which compiles them with that set's registers; the set is chosen once per force
 // evaluation, not per pair.
 //
-// Candidates are filtered in chunks: those within the pair's largest range are packed
+// pair_rows filters candidates in chunks: those within the pair's largest range are packed
 // (branch-free) into a buffer and only they are evaluated. A third to a half of a row
 // lies in the skin, at random, so testing each candidate with a branch mispredicted
 // often; evaluating the packed ones keeps list order, so the sums are the same whatever
