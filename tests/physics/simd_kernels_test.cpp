@@ -2,10 +2,13 @@
 // forces of the scalar path (sse2, the reference) to 1e-12 of the sum of the pair
 // forces' magnitudes on each particle, in 2D and 3D, for each pair evaluator, with one
 // radius (the SIMD kernel) and with two (the per-pair path), on random systems and on
-// a perfect lattice; and each set is bit-identical on one thread and on two.
+// a perfect lattice; and each set is bit-identical on one thread and on two. The
+// integrators' noise is the same numbers under every set.
 #include "support/pair_cases.hpp"
 
+#include "pedesis/core/philox_batch.hpp"
 #include "pedesis/core/simd_level.hpp"
+#include "pedesis/soft/batch_normals.hpp"
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/pair_force.hpp"
 #include "pedesis/soft/pair_potentials.hpp"
@@ -170,5 +173,78 @@ TEST(SimdKernels, ASetTheCpuLacksIsRefused) {
         for (SimdLevel l : levels) EXPECT_NO_THROW(set_simd_level(l));
     } else {
         EXPECT_THROW(set_simd_level(SimdLevel::avx512), std::invalid_argument);
+    }
+}
+
+namespace {
+
+// The tags of a batch: small, large and neighbouring values, the top bit set.
+std::vector<std::uint32_t> batch_tags() {
+    std::vector<std::uint32_t> tags;
+    for (int k = 0; k < detail::noise_batch; ++k)
+        tags.push_back(k % 3 == 0 ? 0xffffffffu - static_cast<std::uint32_t>(k)
+                                  : static_cast<std::uint32_t>(k * 2654435761u));
+    tags[1] = 0;
+    return tags;
+}
+
+// Per normals of each of m particles, from CounterRng's uniforms one by one, through the
+// same Box-Muller steps as the batches.
+std::vector<double> reference_normals(int per, std::uint64_t seed, RngStream stream,
+                                      const std::uint32_t* tag, std::uint32_t step, int m) {
+    std::vector<double> z(static_cast<std::size_t>(m * per));
+    for (int k = 0; k < m; ++k) {
+        CounterRng rng(seed, stream, tag[k], step);
+        for (int c = 0; c < per; c += 2) {
+            const double u1 = rng.uniform(), u2 = rng.uniform();
+            const double r = std::sqrt(-2.0 * std::log(u1));
+            double sn, cs;
+            detail::sincos_turns(u2, sn, cs);
+            z[static_cast<std::size_t>(k * per + c)] = r * cs;
+            if (c + 1 < per) z[static_cast<std::size_t>(k * per + c + 1)] = r * sn;
+        }
+    }
+    return z;
+}
+
+template <int Per> void check_normals(SimdLevel level, int m) {
+    const std::vector<std::uint32_t> tags = batch_tags();
+    const std::uint64_t seed = 0x9e3779b97f4a7c15ull;
+    const std::uint32_t step = 0xfffffff0u;
+    std::vector<double> z(detail::noise_batch * Per, -1.0);
+    detail::batch_normals<Per>(seed, RngStream::orientation, tags.data(), step, m, z.data());
+    const std::vector<double> want =
+        reference_normals(Per, seed, RngStream::orientation, tags.data(), step, m);
+    for (int q = 0; q < m * Per; ++q)
+        ASSERT_EQ(z[static_cast<std::size_t>(q)], want[static_cast<std::size_t>(q)])
+            << simd_name(level) << ": " << Per << " normals per particle, batch of " << m
+            << ", number " << q;
+}
+
+} // namespace
+
+TEST(SimdKernels, EverySetDrawsTheNumbersOfCounterRng) {
+    KernelSetGuard guard;
+    const std::vector<std::uint32_t> tags = batch_tags();
+    // the SSE2 lanes alone, block by block, against CounterRng
+    for (std::uint32_t block = 0; block < 3; ++block) {
+        double u1[detail::noise_batch], u2[detail::noise_batch];
+        detail::philox_uniforms<detail::DefaultLanes>(12345, RngStream::thermostat, tags.data(), 7,
+                                                      block, detail::noise_batch, u1, u2);
+        for (int k = 0; k < detail::noise_batch; ++k) {
+            CounterRng rng(12345, RngStream::thermostat, tags[static_cast<std::size_t>(k)], 7);
+            for (std::uint32_t b = 0; b < block; ++b) rng.uniform(), rng.uniform();
+            ASSERT_EQ(u1[k], rng.uniform()) << "block " << block << ", particle " << k;
+            ASSERT_EQ(u2[k], rng.uniform()) << "block " << block << ", particle " << k;
+        }
+    }
+    // every set's normals, for every batch size (whole vectors, and the rest one by one)
+    for (SimdLevel level : available_simd_levels()) {
+        set_simd_level(level);
+        for (int m = 0; m <= detail::noise_batch; ++m) {
+            check_normals<1>(level, m);
+            check_normals<2>(level, m);
+            check_normals<3>(level, m);
+        }
     }
 }
