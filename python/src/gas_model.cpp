@@ -65,12 +65,14 @@ template <int D, class Engine> class Gas : public GasModel {
     double pressure() override {
         const double t = engine_->time();
         const SpeciesKinetics k = kinetics();
-        const double T = k.temperature();
+        SymTensor mean_thermal;
+        for (int c = 0; c < 6; ++c)
+            mean_thermal[c] = 0.5 * (last_thermal_[c] + k.thermal_tensor[c]);
         const double P = interval_pressure(engine_->box(), last_counters_, engine_->counters(),
-                                           t - last_time_, 0.5 * (last_T_ + T), k.total_freedom);
+                                           t - last_time_, mean_thermal);
         last_counters_ = engine_->counters();
         last_time_ = t;
-        last_T_ = T;
+        last_thermal_ = k.thermal_tensor;
         return P;
     }
 
@@ -131,7 +133,7 @@ template <int D, class Engine> class Gas : public GasModel {
         ParticleStore<D> p = build_particles<D>(c, box);
         engine_ = make(std::move(p), box);
         last_time_ = engine_->time();
-        last_T_ = temperature();
+        last_thermal_ = kinetics().thermal_tensor;
     }
     SpeciesKinetics kinetics() const {
         return measure_kinetics(store(), engine_->box(), hard_particle_dynamics);
@@ -144,7 +146,8 @@ template <int D, class Engine> class Gas : public GasModel {
     std::unique_ptr<Engine> engine_;
     mutable std::vector<Species> table_; // the latest species(), kept for its reference
     EventCounters<D> last_counters_{};
-    double last_time_ = 0.0, last_T_ = 0.0;
+    double last_time_ = 0.0;
+    SymTensor last_thermal_{}; // sum m u_a u_b at the last pressure() (thermo.hpp)
 };
 
 template <int D> class EventGas final : public Gas<D, EventEngine<D>> {

@@ -98,6 +98,9 @@ template <int D> void expect_forces_equal(Twins<D>& t) {
     const PairTotals a = t.cpu->pair_totals(), b = t.gpu->pair_totals();
     EXPECT_NEAR(b.energy, a.energy, 1e-12 * std::abs(a.energy) + 1e-300);
     EXPECT_NEAR(b.virial, a.virial, 1e-12 * std::abs(a.virial) + 1e-300);
+    for (int c = 0; c < 6; ++c)
+        EXPECT_NEAR(b.virial_tensor[c], a.virial_tensor[c], 1e-12 * std::abs(a.virial) + 1e-300)
+            << "virial tensor slot " << c;
 }
 
 TEST(GpuForces, HarmonicTwoSpeciesActiveAligned2D) {

@@ -337,6 +337,11 @@ template <int D> bool same_bits(const Vec<D>& a, const Vec<D>& b) {
     return std::memcmp(a.c.data(), b.c.data(), sizeof(double) * D) == 0;
 }
 
+template <std::size_t N>
+bool same_bits(const std::array<double, N>& a, const std::array<double, N>& b) {
+    return std::memcmp(a.data(), b.data(), sizeof(double) * N) == 0;
+}
+
 // Mean and standard error of the mean of (assumed independent) block values.
 struct BlockStats {
     double mean = 0.0;

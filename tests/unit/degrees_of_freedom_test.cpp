@@ -171,8 +171,22 @@ TEST(DegreesOfFreedom, KineticPressureIsTwiceTheThermalEnergyOverDV) {
     const Box<2> box(Vec<2>::filled(10.0), {true, true});
     const auto k = measure_kinetics(p, box, Momentum::conserving);
     const EventCounters<2> none{};
-    const double P = interval_pressure(box, none, none, 1.0, k.temperature(), k.total_freedom);
+    const double P = interval_pressure(box, none, none, 1.0, k.thermal_tensor);
     EXPECT_NEAR(P, 2.0 * k.total_thermal / (2.0 * box.volume()), 1e-12 * P);
+    // the tensor's trace is 2 K_thermal, and its off-diagonal part sum m u_x u_y
+    EXPECT_NEAR(k.thermal_tensor[0] + k.thermal_tensor[1], 2.0 * k.total_thermal,
+                1e-12 * k.total_thermal);
+    Vec<2> momentum{};
+    double mass = 0.0, xy = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        momentum += p.mass(i) * p.velocity[i];
+        mass += p.mass(i);
+    }
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const Vec<2> u = p.velocity[i] - momentum * (1.0 / mass);
+        xy += p.mass(i) * u[0] * u[1];
+    }
+    EXPECT_NEAR(k.thermal_tensor[sym_slot(0, 1)], xy, 1e-12 * k.total_thermal);
 }
 
 namespace {

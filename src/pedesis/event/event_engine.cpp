@@ -499,7 +499,7 @@ template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_
             ? collide_growing_pair(p_.velocity[i], p_.velocity[j], n, inv_mass_[si], inv_mass_[sj],
                                    xi, radius_rate_[si] + radius_rate_[sj])
             : collide_pair(p_.velocity[i], p_.velocity[j], n, inv_mass_[si], inv_mass_[sj], xi);
-    for (int a = 0; a < D; ++a) counters_.virial[a] += res.impulse * n[a] * dr[a];
+    add_collision_virial(counters_, res.impulse, n, dr);
     kinetic_ += res.energy_change;
     if (kinetic_ < 0.5 * kinetic_exact_) resum_kinetic_energy();
     counters_.energy_lost -= res.energy_change;
@@ -738,8 +738,9 @@ template <int D> std::size_t EventEngine<D>::memory_bytes() const {
 
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" in memory order
-// 2: one cell list per size class; 3: growth state
-constexpr std::uint32_t checkpoint_version = 3;
+// 2: one cell list per size class; 3: growth state; 4: the collision virial's
+// off-diagonal components
+constexpr std::uint32_t checkpoint_version = 4;
 } // namespace
 
 template <int D> void EventEngine<D>::save(std::ostream& out) const {

@@ -6,6 +6,7 @@
 // same Box-Muller and sin/cos (core/sincos.hpp), the integrators' per-species tables.
 #include "pedesis/core/sincos.hpp"
 #include "pedesis/core/sphere_rotation.hpp"
+#include "pedesis/core/sym_tensor.hpp"
 #include "pedesis/gpu/device_system.hpp"
 
 #include <Random123/philox.h>
@@ -254,13 +255,15 @@ __global__ void k_forces(const double* pos, const double* dir, const std::uint16
     }
 }
 
-// Energy and virial, each pair half to each of its particles, over a cell list of its own
-// (order: the sorted indices, cell bounds by rank).
+// Energy, virial and virial tensor, each pair half to each of its particles, over a cell
+// list of its own (order: the sorted indices, cell bounds by rank). The tensor's slot c
+// (sym_tensor.hpp) of sorted particle s is at tensor[c n + s].
 template <int D, class Pair, bool Uniform>
 __global__ void k_totals(const double* pos, const std::uint16_t* sp, std::size_t n, Geometry g,
                          const std::uint32_t* rank, const std::uint32_t* order,
                          const std::uint32_t* start, const std::uint32_t* end, double r_cut2,
-                         const Pair* pairs, ForceTables t, double* energy, double* virial) {
+                         const Pair* pairs, ForceTables t, double* energy, double* virial,
+                         double* tensor) {
     const std::size_t s = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
     if (s >= n) return;
     const std::uint32_t i = order[s];
@@ -269,7 +272,7 @@ __global__ void k_totals(const double* pos, const std::uint16_t* sp, std::size_t
     cell_of<D>(ri.c, g, c);
     const Stencil<D> st = stencil<D>(c, g, rank);
     const std::uint16_t si = sp[i];
-    double e = 0.0, w = 0.0;
+    double e = 0.0, w = 0.0, wt[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     for (int q = 0; q < st.size; ++q)
         for (std::uint32_t k = start[st.rank[q]]; k < end[st.rank[q]]; ++k) {
             const std::uint32_t j = order[k];
@@ -285,10 +288,14 @@ __global__ void k_totals(const double* pos, const std::uint16_t* sp, std::size_t
             if (pairs[Uniform ? 0 : si * t.species + sj].eval(r2, rsum, f_over_r, u)) {
                 e += 0.5 * u;
                 w += 0.5 * f_over_r * r2;
+                for (int a = 0; a < D; ++a)
+                    for (int b = a; b < D; ++b)
+                        wt[sym_slot(a, b)] += 0.5 * f_over_r * d.c[a] * d.c[b];
             }
         }
     energy[s] = e;
     virial[s] = w;
+    for (int c = 0; c < 6; ++c) tensor[c * n + s] = wt[c];
 }
 
 // ---- integrators ----
@@ -507,7 +514,7 @@ struct DeviceSystem::Impl {
     Buffer<std::uint32_t> tag, keys, keys_alt, order, order_alt, cell_start, cell_end, list, count;
     Buffer<std::uint16_t> species;
     Buffer<unsigned char> sort_temp;
-    Buffer<double> energy, virial, sums;
+    Buffer<double> energy, virial, tensor, sums;
     Buffer<HarmonicPair> harmonic;
     Buffer<WcaPair> wca;
     Buffer<LjPair> lj;
@@ -581,7 +588,7 @@ struct DeviceSystem::Impl {
         coef.reserve(m.species);
         status.reserve(1);
         needed.reserve(1);
-        sums.reserve(2);
+        sums.reserve(8);
         check(cudaHostAlloc(&host_status, sizeof(Status), cudaHostAllocDefault), "pinned status");
     }
     ~Impl() {
@@ -757,13 +764,13 @@ struct DeviceSystem::Impl {
         const ForceTables t{radius.p, coef.p, m.species, c.J, 0.0};
         const double rc2 = m.r_cut * m.r_cut;
         if (uniform)
-            k_totals<Dim, Pair, true><<<blocks(n), block_size>>>(pos.p, species.p, n, grid, rank.p,
-                                                                 by, cell_start.p, cell_end.p, rc2,
-                                                                 pairs, t, energy.p, virial.p);
+            k_totals<Dim, Pair, true><<<blocks(n), block_size>>>(
+                pos.p, species.p, n, grid, rank.p, by, cell_start.p, cell_end.p, rc2, pairs, t,
+                energy.p, virial.p, tensor.p);
         else
-            k_totals<Dim, Pair, false><<<blocks(n), block_size>>>(pos.p, species.p, n, grid, rank.p,
-                                                                  by, cell_start.p, cell_end.p, rc2,
-                                                                  pairs, t, energy.p, virial.p);
+            k_totals<Dim, Pair, false><<<blocks(n), block_size>>>(
+                pos.p, species.p, n, grid, rank.p, by, cell_start.p, cell_end.p, rc2, pairs, t,
+                energy.p, virial.p, tensor.p);
     }
 
     template <int Dim> void totals_dim(std::uint32_t* by) {
@@ -919,6 +926,7 @@ Totals DeviceSystem::totals() {
     if (s.m.pair == PairKind::none || s.n == 0) return {};
     s.energy.reserve(s.n);
     s.virial.reserve(s.n);
+    s.tensor.reserve(6 * s.n);
     cub::DoubleBuffer<std::uint32_t> k(s.keys.p, s.keys_alt.p), v(s.order.p, s.order_alt.p);
     s.bin(s.pos.p, s.grid, s.rank, s.cells, k, v);
     if (s.D == 2)
@@ -935,9 +943,15 @@ Totals DeviceSystem::totals() {
     check(cub::DeviceReduce::Sum(s.sort_temp.p, temp, s.virial.p, s.sums.p + 1,
                                  static_cast<int>(s.n)),
           "reduce");
-    double out[2];
+    for (int c = 0; c < 6; ++c)
+        check(cub::DeviceReduce::Sum(s.sort_temp.p, temp, s.tensor.p + c * s.n, s.sums.p + 2 + c,
+                                     static_cast<int>(s.n)),
+              "reduce");
+    double out[8];
     check(cudaMemcpy(out, s.sums.p, sizeof out, cudaMemcpyDeviceToHost), "totals");
-    return {out[0], out[1]};
+    Totals t{out[0], out[1], {}};
+    for (int c = 0; c < 6; ++c) t.virial_tensor[c] = out[2 + c];
+    return t;
 }
 
 std::size_t DeviceSystem::device_bytes() const {
@@ -946,7 +960,8 @@ std::size_t DeviceSystem::device_bytes() const {
            s.ref.bytes() + s.scratch.bytes() + s.image.bytes() + s.tag.bytes() + s.keys.bytes() +
            s.keys_alt.bytes() + s.order.bytes() + s.order_alt.bytes() + s.cell_start.bytes() +
            s.cell_end.bytes() + s.list.bytes() + s.count.bytes() + s.species.bytes() +
-           s.sort_temp.bytes() + s.energy.bytes() + s.virial.bytes() + s.rank.bytes();
+           s.sort_temp.bytes() + s.energy.bytes() + s.virial.bytes() + s.tensor.bytes() +
+           s.rank.bytes();
 }
 
 } // namespace pedesis::gpu

@@ -64,9 +64,11 @@ struct StepCoefficients {
     double max_move = 0.0; // a longer move in one step is a blow-up (the skin)
 };
 
-// Energy and virial of the pair forces (soft/plugins.hpp's PairTotals, C++17).
+// Energy, virial and virial tensor of the pair forces (soft/plugins.hpp's PairTotals,
+// C++17; the tensor's slots as core/sym_tensor.hpp's).
 struct Totals {
     double energy = 0.0, virial = 0.0;
+    double virial_tensor[6] = {};
 };
 
 } // namespace pedesis::gpu

@@ -210,7 +210,9 @@ template <int D> class GpuStepper final : public DeviceStepper<D> {
     PairTotals pair_totals() override {
         gpu::Totals t;
         guarded([&] { t = system_.totals(); });
-        return {t.energy, t.virial};
+        PairTotals p{t.energy, t.virial, {}};
+        std::copy(std::begin(t.virial_tensor), std::end(t.virial_tensor), p.virial_tensor.begin());
+        return p;
     }
 
     void download() override {

@@ -59,6 +59,18 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
         {"pressure_virial", "energy / volume", "pair virial sum r_ij . F_ij / (d V)", soft},
         {"pressure_active", "energy / volume",
          "swim pressure of the self-propulsion forces, sum alpha n_i . dr_i / (d V)", soft},
+        {"pressure_xx", "energy / volume",
+         "pressure tensor, diagonal component along x, from the same parts as pressure "
+         "(the mean of the diagonal components is pressure)",
+         all},
+        {"pressure_yy", "energy / volume", "pressure tensor, diagonal component along y", all},
+        {"pressure_zz", "energy / volume", "pressure tensor, diagonal component along z (3D)", all},
+        {"pressure_xy", "energy / volume",
+         "pressure tensor, off-diagonal component xy: kinetic part plus pair or collision "
+         "virial (walls push along their normal and add to the diagonal only)",
+         all},
+        {"pressure_xz", "energy / volume", "pressure tensor, off-diagonal component xz (3D)", all},
+        {"pressure_yz", "energy / volume", "pressure tensor, off-diagonal component yz (3D)", all},
     };
     return catalogue;
 }

@@ -23,6 +23,7 @@
 // mixture of any size; the usual d N_s would be biased low by the factor 1 - m_s / M.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/particles.hpp"
+#include "pedesis/core/sym_tensor.hpp"
 
 #include <array>
 #include <cmath>
@@ -42,6 +43,7 @@ struct SpeciesKinetics {
     std::vector<std::size_t> mobile; // per species: particles with finite mass
     double total_kinetic = 0.0;
     double total_thermal = 0.0;
+    SymTensor thermal_tensor{}; // sum m u_a u_b, u the velocity in the centre-of-mass frame
     double total_freedom = 0.0;
     std::size_t total_mobile = 0;
     int conserved_components = 0; // c: momentum components fixed by the dynamics
@@ -102,6 +104,8 @@ SpeciesKinetics measure_kinetics(const ParticleStore<D>& p, const std::array<boo
             k.conserved_components > 0 ? 0.5 * m * norm2(p.velocity[i] - centre) : e;
         k.thermal[s] += thermal;
         k.total_thermal += thermal;
+        const Vec<D> u = p.velocity[i] - centre;
+        add_sym_outer<D>(k.thermal_tensor, u, u, m);
         mass[s] += m;
         ++k.mobile[s];
         ++k.total_mobile;

@@ -54,9 +54,8 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
                                                         event_params(c_));
             });
             record_.initial_kinetic = engine_->kinetic_energy();
-            record_.last_temperature =
-                measure_kinetics(engine_->lazy_particles(), box, hard_particle_dynamics)
-                    .temperature();
+            record_.start_from(
+                measure_kinetics(engine_->lazy_particles(), box, hard_particle_dynamics));
             record_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
         growing_ = c_.growth_rate > 0;

@@ -34,6 +34,8 @@ template <int D> void HardRunRecord<D>::save(std::ostream& out) const {
     binary::put(out, integral_T_dt);
     binary::put(out, last_log_time);
     binary::put(out, last_temperature);
+    binary::put(out, integral_thermal_dt);
+    binary::put(out, last_thermal);
     binary::put(out, last_counters);
     binary::put(out, frames);
     histogram.save(out);
@@ -44,6 +46,8 @@ template <int D> void HardRunRecord<D>::load(std::istream& in) {
     binary::get(in, integral_T_dt);
     binary::get(in, last_log_time);
     binary::get(in, last_temperature);
+    binary::get(in, integral_thermal_dt);
+    binary::get(in, last_thermal);
     binary::get(in, last_counters);
     binary::get(in, frames);
     histogram.load(in);
@@ -61,8 +65,11 @@ template <int D> std::vector<std::string> HardRunOutput<D>::log_columns() const 
         c.push_back("temperature_" + s.name);
         c.push_back("kinetic_energy_" + s.name);
     }
-    for (const char* name : {"pressure", "pressure_ideal", "compressibility", "mean_free_time"})
-        c.push_back(name);
+    c.push_back("pressure");
+    c.push_back("pressure_ideal");
+    for (int slot : sym_slots<D>()) c.push_back(std::string("pressure_") + sym_suffix(slot));
+    c.push_back("compressibility");
+    c.push_back("mean_free_time");
     return c;
 }
 
@@ -76,8 +83,14 @@ HardMeasurement HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D
     const double T = k.temperature();
     const double dt = t - record_.last_log_time;
     const double meanT = 0.5 * (T + record_.last_temperature);
-    const double P =
-        interval_pressure(box, record_.last_counters, counters, dt, meanT, k.total_freedom);
+    SymTensor mean_thermal;
+    for (int c = 0; c < 6; ++c) {
+        mean_thermal[c] = 0.5 * (k.thermal_tensor[c] + record_.last_thermal[c]);
+        record_.integral_thermal_dt[c] += mean_thermal[c] * dt;
+    }
+    const SymTensor tensor =
+        interval_pressure_tensor(box, record_.last_counters, counters, dt, mean_thermal);
+    const double P = sym_trace<D>(tensor) / D;
     record_.integral_T_dt += meanT * dt;
     const double n = static_cast<double>(p.size());
     const auto C = static_cast<double>(counters.pair_collisions);
@@ -90,11 +103,13 @@ HardMeasurement HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D
         values.insert(values.end(), {k.temperature(s), k.kinetic[s]});
     const double mft = C > 0 ? static_cast<double>(k.total_mobile) * t / (2.0 * C)
                              : std::numeric_limits<double>::infinity();
-    values.insert(values.end(),
-                  {dt > 0 ? P : 0.0, P_ideal, dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft});
+    values.insert(values.end(), {dt > 0 ? P : 0.0, P_ideal});
+    for (int slot : sym_slots<D>()) values.push_back(tensor[slot]);
+    values.insert(values.end(), {dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft});
     if (c_.histogram_start && t >= *c_.histogram_start) record_.histogram.add(p);
     record_.last_log_time = t;
     record_.last_temperature = T;
+    record_.last_thermal = k.thermal_tensor;
     record_.last_counters = counters;
     m.temperature = T;
     m.pressure = P;
@@ -121,8 +136,9 @@ nlohmann::json HardRunOutput<D>::summary(const ParticleStore<D>& p, const Box<D>
     const auto k = measure_kinetics(p, box, hard_particle_dynamics);
     const double V = box.volume();
     const double T_avg = t > 0 ? record_.integral_T_dt / t : k.temperature();
-    const double P =
-        interval_pressure(box, EventCounters<D>{}, counters, t, T_avg, k.total_freedom);
+    const SymTensor tensor =
+        interval_pressure_tensor(box, EventCounters<D>{}, counters, t, record_.mean_thermal(t));
+    const double P = sym_trace<D>(tensor) / D;
     const double P_ideal = static_cast<double>(k.total_mobile) * T_avg / V;
     const double eta = packing_fraction(p, box);
     const auto C = counters.pair_collisions;
@@ -143,6 +159,7 @@ nlohmann::json HardRunOutput<D>::summary(const ParticleStore<D>& p, const Box<D>
         j["species"][c_.species[s].name] = {{"temperature", k.temperature(s)},
                                             {"kinetic_energy", k.kinetic[s]}};
     j["pressure"] = P;
+    for (int slot : sym_slots<D>()) j["pressure_tensor"][sym_suffix(slot)] = tensor[slot];
     j["pressure_ideal_gas"] = P_ideal;
     j["compressibility"] = P_ideal > 0 ? P / P_ideal : 0.0;
     j["compressibility_equation_of_state"] = theory::compressibility_factor(D, eta);

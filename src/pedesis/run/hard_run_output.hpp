@@ -30,10 +30,24 @@ template <int D> struct HardRunRecord {
     double integral_T_dt = 0.0; // for the kinetic part of the run-averaged pressure
     double last_log_time = 0.0;
     double last_temperature = 0.0;
+    SymTensor integral_thermal_dt{}; // for the run-averaged pressure tensor
+    SymTensor last_thermal{};        // sum m u_a u_b at the last row (thermo.hpp)
     EventCounters<D> last_counters{};
     std::uint64_t frames = 0;
     SpeedHistogram histogram;
 
+    // the kinetic state at t = 0 of a fresh run
+    void start_from(const SpeciesKinetics& k) {
+        last_temperature = k.temperature();
+        last_thermal = k.thermal_tensor;
+    }
+    // The time mean of sum m u_a u_b over the run so far (its value now at t = 0).
+    SymTensor mean_thermal(double t) const {
+        if (!(t > 0)) return last_thermal;
+        SymTensor m;
+        for (int c = 0; c < 6; ++c) m[c] = integral_thermal_dt[c] / t;
+        return m;
+    }
     void save(std::ostream& out) const;
     void load(std::istream& in);
 };

@@ -102,6 +102,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                 book_.start[state_.p.tag[i]] = state_.unwrapped(i);
         }
         read_observable_parameters(table);
+        read_swim_forces();
         particles_ = state_.size();
         if (o_.comm && o_.comm->size() > 1) {
             // what measured_shared needs of the whole system, which does not change
@@ -109,10 +110,6 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             species_count_.assign(table.size(), 0.0);
             for (std::size_t i = 0; i < state_.size(); ++i)
                 species_count_[state_.p.species[i]] += 1.0;
-            swim_alpha_.assign(table.size(), 0.0);
-            for (std::size_t sp = 0; sp < table.size(); ++sp)
-                for (const auto& f : evolver_->forces())
-                    swim_alpha_[sp] += f->swim_force(sp, table.size());
             // every process built or loaded the whole state, and keeps its domain's share
             const double reach = evolver_->interaction_reach();
             domain_ = std::make_unique<DomainDecomposition<D>>(*o_.comm, state_.box, reach);
@@ -177,8 +174,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     std::vector<std::string> log_columns() const override {
         std::vector<std::string> c = {"step", "time", "polar_order", "msd", "potential_energy"};
         if (inertial()) c.insert(c.end(), {"kinetic_energy", "temperature", "total_energy"});
-        c.insert(c.end(), {"pressure", "pressure_ideal", "pressure_virial", "pressure_active",
-                           "list_rebuilds"});
+        c.insert(c.end(), {"pressure", "pressure_ideal", "pressure_virial", "pressure_active"});
+        for (int slot : sym_slots<D>()) c.push_back(std::string("pressure_") + sym_suffix(slot));
+        c.push_back("list_rebuilds");
         return c;
     }
 
@@ -193,8 +191,11 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                       {static_cast<double>(state_.step), state_.time, m.order, m.msd, pair.energy});
         if (inertial())
             values.insert(values.end(), {m.kinetic, m.temperature, pair.energy + m.kinetic});
-        values.insert(values.end(), {pressure, m.ideal, virial, m.active,
-                                     static_cast<double>(evolver_->list_builds())});
+        values.insert(values.end(), {pressure, m.ideal, virial, m.active});
+        for (int slot : sym_slots<D>())
+            values.push_back(m.ideal_tensor[slot] + pair.virial_tensor[slot] / V +
+                             m.active_tensor[slot]);
+        values.push_back(static_cast<double>(evolver_->list_builds()));
         if (state_.step > 0) {
             ++book_.samples;
             book_.sum_pressure += pressure;
@@ -366,19 +367,28 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         if (!found) RunEngine<D>::steer(name, value);
         // the logged ideal pressure of an overdamped run is n T of its bath
         read_observable_parameters(state_.p.species_table);
-        if (domain_)
-            for (std::size_t sp = 0; sp < swim_alpha_.size(); ++sp) {
-                swim_alpha_[sp] = 0.0;
-                for (const auto& f : evolver_->forces())
-                    swim_alpha_[sp] += f->swim_force(sp, swim_alpha_.size());
-            }
+        read_swim_forces();
     }
 
   private:
-    // The log's one-body quantities at this instant.
+    // The log's one-body quantities at this instant; the tensors are pressure parts.
     struct Measured {
         double order = 0.0, msd = 0.0, kinetic = 0.0, temperature = 0.0, ideal = 0.0, active = 0.0;
+        SymTensor ideal_tensor{}, active_tensor{};
     };
+
+    // The active force along the director of each species (for the swim pressure's sums).
+    void read_swim_forces() {
+        const std::size_t species = state_.p.species_table.size();
+        swim_alpha_.assign(species, 0.0);
+        for (std::size_t sp = 0; sp < species; ++sp)
+            for (const auto& f : evolver_->forces()) swim_alpha_[sp] += f->swim_force(sp, species);
+    }
+
+    // An overdamped run's ideal part is the bath's n T, isotropic.
+    void isotropic_ideal(Measured& m) const {
+        for (int a = 0; a < D; ++a) m.ideal_tensor[a] = m.ideal;
+    }
 
     // From the whole state, on one process.
     Measured measured_here() const {
@@ -391,11 +401,15 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             m.ideal = 2.0 * k.total_thermal / (D * V);
             m.kinetic = k.total_kinetic;
             m.temperature = k.temperature();
+            for (int c = 0; c < 6; ++c) m.ideal_tensor[c] = k.thermal_tensor[c] / V;
         } else {
             for (std::size_t i = 0; i < s.size(); ++i) m.ideal += bath_T_[s.p.species[i]];
             m.ideal /= V;
+            isotropic_ideal(m);
         }
         for (const auto& f : evolver_->forces()) m.active += f->swim_pressure(s, book_.start);
+        const SymTensor swim = swim_tensor_of(soft_log_sums(s, book_.start, swim_alpha_));
+        for (int c = 0; c < 6; ++c) m.active_tensor[c] = swim[c] / V;
         m.order = polar_order(s);
         m.msd = mean_squared_displacement(s, book_.start);
         return m;
@@ -414,6 +428,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         m.msd = t.squared_displacement / n;
         // sum alpha n . (dr - drift), with drift the mean displacement
         m.active = (t.swim - dot(t.displacement * (1.0 / n), t.swim_direction)) / (D * V);
+        const SymTensor swim = swim_tensor_of(t);
+        for (int c = 0; c < 6; ++c) m.active_tensor[c] = swim[c] / V;
         if (inertial()) {
             // sum m (v - V)^2 / 2 along the conserved axes is sum m v^2 / 2 - P^2 / 2M
             double thermal = t.kinetic;
@@ -427,10 +443,13 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             m.kinetic = t.kinetic;
             m.temperature = freedom > 0.0 ? 2.0 * thermal / freedom : 0.0;
             m.ideal = 2.0 * thermal / (D * V);
+            const SymTensor k = thermal_tensor_of<D>(t, conserved_);
+            for (int c = 0; c < 6; ++c) m.ideal_tensor[c] = k[c] / V;
         } else {
             for (std::size_t sp = 0; sp < species_count_.size(); ++sp)
                 m.ideal += species_count_[sp] * bath_T_[sp];
             m.ideal /= V;
+            isotropic_ideal(m);
         }
         return m;
     }

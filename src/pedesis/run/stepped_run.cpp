@@ -85,8 +85,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
                 return std::make_unique<SteppedEngine<D>>(std::move(p), box, stepped_params(c_));
             });
             record_.initial_kinetic = engine_->kinetic_energy();
-            record_.last_temperature =
-                measure_kinetics(engine_->particles(), box, hard_particle_dynamics).temperature();
+            record_.start_from(measure_kinetics(engine_->particles(), box, hard_particle_dynamics));
             record_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
         if (c_.stop_collisions_per_particle)
@@ -136,7 +135,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
         }
         const auto mobile = static_cast<double>(std::max<std::size_t>(m.kinetics.total_mobile, 1));
         const double v_rms = std::sqrt(sum_v2 / mobile);
-        const double P_run = running_pressure(m.kinetics.total_freedom);
+        const double P_run = running_pressure();
         // the notebook's line, once per log row
         if (c_.progress)
             console_ << fmt::format("  Iteration: {:<9d} Time: {:<11.4E} V_RMS: {:<11.4E} {}: {}\n",
@@ -207,12 +206,12 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
 
     // The running pressure of the notebook: everything the walls (or, on periodic axes,
     // the collisions) have received since t = 0, over the whole time.
-    double running_pressure(double degrees_of_freedom) const {
+    double running_pressure() const {
         const auto& e = *engine_;
         const double t = e.time();
         if (!(t > 0)) return 0.0;
         return interval_pressure(e.box(), EventCounters<D>{}, e.counters(), t,
-                                 record_.integral_T_dt / t, degrees_of_freedom);
+                                 record_.mean_thermal(t));
     }
 
     std::unique_ptr<SteppedEngine<D>> engine_;

@@ -280,6 +280,7 @@ template <int D> void Evolver<D>::add_tail_corrections(PairTotals& t) {
         const PairTotals tail = f->tail(table, counts, s_.box.volume());
         t.energy += tail.energy;
         t.virial += tail.virial;
+        for (int c = 0; c < 6; ++c) t.virial_tensor[c] += tail.virial_tensor[c];
     }
 }
 
@@ -291,9 +292,13 @@ template <int D> PairTotals Evolver<D>::pair_totals_within_cutoff() {
         // the ghosts must be where their owners are (and a rebuild here is shared)
         ensure_list(true);
         for (const auto& f : forces_) f->add_totals(s_, *nl_, t);
-        double sums[2] = {t.energy, t.virial};
+        std::array<double, 8> sums{t.energy, t.virial};
+        std::copy(t.virial_tensor.begin(), t.virial_tensor.end(), sums.begin() + 2);
         domain_->comm().sum(sums);
-        return {sums[0], sums[1]};
+        t.energy = sums[0];
+        t.virial = sums[1];
+        std::copy(sums.begin() + 2, sums.end(), t.virial_tensor.begin());
+        return t;
     }
     if (!nl_->needs_rebuild(s_.p.position)) {
         for (const auto& f : forces_) f->add_totals(s_, *nl_, t);

@@ -76,6 +76,8 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
                     t.energy += weight * energy;
                     t.virial += weight * virial;
                 }
+            // a homogeneous fluid's share: isotropic
+            for (int a = 0; a < D; ++a) t.virial_tensor[a] = t.virial / D;
         }
         return t;
     }
@@ -98,6 +100,7 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
                 if (pair.eval(r2, s.p.radius(i) + s.p.radius(*it), f_over_r, energy)) {
                     t.energy += weight * energy;
                     t.virial += weight * (f_over_r * r2);
+                    add_sym_outer<D>(t.virial_tensor, d, d, weight * f_over_r);
                 }
             }
         }

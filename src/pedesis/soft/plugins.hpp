@@ -2,6 +2,7 @@
 // The plug-in interfaces of the soft/active engine (the design of the ABP tutorial:
 // forces, torques and integrators registered with an evolver). A virtual call happens
 // once per term per step, never per pair or per particle.
+#include "pedesis/core/sym_tensor.hpp"
 #include "pedesis/soft/soft_state.hpp"
 #include "pedesis/spatial/neighbor_list.hpp"
 
@@ -14,8 +15,9 @@ namespace pedesis {
 // Totals that only logging needs: computed on request, serially, so that they are
 // reproducible and cost nothing on ordinary steps.
 struct PairTotals {
-    double energy = 0.0; // potential energy of the conservative forces
-    double virial = 0.0; // sum over pairs of r_ij . F_ij
+    double energy = 0.0;       // potential energy of the conservative forces
+    double virial = 0.0;       // sum over pairs of r_ij . F_ij
+    SymTensor virial_tensor{}; // sum over pairs of r_ij,a F_ij,b (trace: virial)
 };
 
 template <int D> class ForceTerm {

@@ -253,7 +253,7 @@ template <int D> void SteppedEngine<D>::collide(const Event& e) {
                                          inv_mass_[p_.species[i]], inv_mass_[p_.species[j]], 1.0);
     p_.position[i] += (p_.velocity[i] - vi0) * back;
     p_.position[j] += (p_.velocity[j] - vj0) * back;
-    for (int a = 0; a < D; ++a) counters_.virial[a] += imp.impulse * n[a] * dr[a];
+    add_collision_virial(counters_, imp.impulse, n, dr);
     ++counters_.pair_collisions;
     if (e.late) ++stats_.late_collisions;
     moved(i, e.when);
@@ -323,7 +323,8 @@ template <int D> void SteppedEngine<D>::check_no_overlap(double rel_tol) const {
 
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x5054535344455045ull; // "EPEDSSTP" in memory order
-constexpr std::uint32_t checkpoint_version = 1;
+// 2: the collision virial's off-diagonal components
+constexpr std::uint32_t checkpoint_version = 2;
 } // namespace
 
 template <int D> void SteppedEngine<D>::save(std::ostream& out) const {

@@ -10,6 +10,10 @@ from . import figure
 from .run_dir import InputError
 
 
+# the pressure tensor's components: a panel of their own
+_TENSOR = {f"pressure_{a}{b}" for a in "xyz" for b in "xyz"}
+
+
 def panels(log, dim):
     """(title, y label, columns) for each quantity the log has, in a fixed order."""
     density = "energy/area" if dim == 2 else "energy/volume"
@@ -21,11 +25,15 @@ def panels(log, dim):
     ]
     out = []
     for title, ylabel, prefix in groups:
-        cols = [c for c in log if c == prefix or c.startswith(prefix + "_")]
+        cols = [c for c in log
+                if (c == prefix or c.startswith(prefix + "_")) and c not in _TENSOR]
         if prefix in ("kinetic_energy", "temperature") and len(cols) == 2 and prefix in cols:
             cols = [prefix]  # one species: its column repeats the total
         if cols:
             out.append((title, ylabel, cols))
+    tensor = [c for c in log if c in _TENSOR]
+    if tensor:
+        out.append(("pressure tensor", f"P_ab [{density}]", tensor))
     return out
 
 
@@ -43,6 +51,8 @@ def label(column, prefix_title):
     """'temperature_A' -> 'A' (a species); the bare column is the total."""
     if column in _PRESSURE_LABELS:
         return _PRESSURE_LABELS[column]
+    if column in _TENSOR:
+        return "P_" + column[len("pressure_"):]
     prefix = prefix_title.replace(" ", "_")
     return "total" if column == prefix else column[len(prefix) + 1:]
 
@@ -78,7 +88,8 @@ def main():
                 y = log[col]
                 style = dict(color="k" if k == 0 else f"C{k - 1}", lw=1.6 if k == 0 else 1.1,
                              label=label(col, title))
-                skip_first = title == "pressure" and interval_pressure and col != "pressure_ideal"
+                skip_first = (title.startswith("pressure") and interval_pressure
+                              and col != "pressure_ideal")
                 if skip_first and col == "pressure":
                     ax.step(x[1:], y[1:], where="pre", **style)
                 elif skip_first:
@@ -91,7 +102,8 @@ def main():
             ax.set_ylabel(ylabel)
             if r == 0:
                 ax.set_title(title + (" (mean over each log interval)"
-                                      if title == "pressure" and interval_pressure else ""))
+                                      if title.startswith("pressure") and interval_pressure
+                                      else ""))
             if len(cols) > 1:
                 ax.legend()
             ax.grid(alpha=0.3)
