@@ -142,6 +142,26 @@ def test_lennard_jones_tail_corrections_come_from_the_engine(tmp_path):
     assert abs(u + 0.2406678) < 1e-6 and abs(p + 0.3733455) < 1e-6
 
 
+def test_lennard_jones_reweighting_counts_pairs_and_weights_blocks():
+    # a simple cubic lattice of spacing 1 in a periodic box of 4: 3 nearest neighbours per
+    # site inside 1.01 (192 pairs), 3 + 6 = 9 inside 1.42 (576), none inside 0.99; the
+    # pairs across the periodic faces count
+    grid = np.arange(4.0)
+    lattice = np.array(np.meshgrid(grid, grid, grid)).reshape(3, -1).T
+    lengths = np.array([4.0, 4.0, 4.0])
+    assert liquid.pairs_within(lattice, lengths, 1.01) == 192
+    assert liquid.pairs_within(lattice, lengths, 1.42) == 576
+    assert liquid.pairs_within(lattice, lengths, 0.99) == 0
+    assert liquid.pairs_within(lattice - 2.0, lengths, 1.01) == 192  # centred coordinates
+    # equal weights give block_mean; a weight of zero drops its sample from its block
+    rng = np.random.default_rng(3)
+    x = rng.normal(size=200)
+    assert np.allclose(liquid.reweighted_block_mean(x, np.ones(200)), stats.block_mean(x))
+    w = np.ones(200)
+    w[::2] = 0.0
+    assert np.isclose(liquid.reweighted_block_mean(x, w)[0], stats.block_mean(x[1::2])[0])
+
+
 def test_a_signal_stops_the_suite_and_its_runs(pedesis_bin, tmp_path):
     # SIGTERM 3 s into a case of ~30 s: pedesis validate ends within a second by the same
     # signal, with no report and no pedesis run left behind
