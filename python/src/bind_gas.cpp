@@ -5,6 +5,7 @@
 #include "script_trigger.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/sym_tensor.hpp"
 
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
@@ -220,11 +221,29 @@ dynamics conserves: d in a fully periodic box without fixed obstacles, one per p
 axis with walls on the others, 0 with walls on every axis or a fixed obstacle.
 )doc")
         .def(
-            "pressure", [](PyGas& g) { return g.model->pressure(); }, R"doc(
-Pressure since the previous call (or t = 0): on walled axes the momentum delivered to
-the walls per unit time and wall area (seed 003's definition), on periodic axes the
-collision virial (f / d) T / V + sum J n.r / (V dt), f the degrees of freedom; the mean
-over the axes. The temperature there is the mean of those at both ends of the interval.
+            "pressure",
+            [](PyGas& g, bool tensor) -> py::object {
+                const SymTensor t = g.model->pressure_tensor();
+                const int d = g.model->dim();
+                if (!tensor) {
+                    double trace = 0.0;
+                    for (int a = 0; a < d; ++a) trace += t[static_cast<std::size_t>(a)];
+                    return py::float_(trace / d);
+                }
+                py::array_t<double> m({d, d});
+                auto w = m.mutable_unchecked<2>();
+                for (int a = 0; a < d; ++a)
+                    for (int b = 0; b < d; ++b)
+                        w(a, b) = t[static_cast<std::size_t>(sym_slot(a, b))];
+                return m;
+            },
+            py::arg("tensor") = false, R"doc(
+Pressure since the previous call (or t = 0), log.csv's definition: the mean of the
+pressure tensor's diagonal, or with tensor=True the d x d tensor itself (numpy array).
+A walled axis's diagonal component is the momentum delivered to its walls per unit time
+and wall area (seed 003's definition); every other component is the virial
+<sum m u_a u_b> / V + sum J n_a r_b / (V dt), u the velocities in the centre-of-mass
+frame along conserved axes, averaged over both ends of the interval.
 )doc")
         .def(
             "frame", [](const PyGas& g) { return frame(*g.model); },

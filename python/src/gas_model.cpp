@@ -62,14 +62,14 @@ template <int D, class Engine> class Gas : public GasModel {
     double kinetic_energy() const override { return engine_->kinetic_energy(); }
     double temperature() const override { return kinetics().temperature(); }
     double degrees_of_freedom() const override { return kinetics().total_freedom; }
-    double pressure() override {
+    SymTensor pressure_tensor() override {
         const double t = engine_->time();
         const SpeciesKinetics k = kinetics();
         SymTensor mean_thermal;
         for (int c = 0; c < 6; ++c)
             mean_thermal[c] = 0.5 * (last_thermal_[c] + k.thermal_tensor[c]);
-        const double P = interval_pressure(engine_->box(), last_counters_, engine_->counters(),
-                                           t - last_time_, mean_thermal);
+        const SymTensor P = interval_pressure_tensor(
+            engine_->box(), last_counters_, engine_->counters(), t - last_time_, mean_thermal);
         last_counters_ = engine_->counters();
         last_time_ = t;
         last_thermal_ = k.thermal_tensor;

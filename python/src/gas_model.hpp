@@ -4,6 +4,7 @@
 // advanced until a time, a collision count or a number of steps, and measured. Nothing
 // here knows Python.
 #include "pedesis/core/species.hpp"
+#include "pedesis/core/sym_tensor.hpp"
 #include "pedesis/run/trigger.hpp"
 #include "pedesis/setup/run_config.hpp"
 
@@ -48,10 +49,10 @@ class GasModel {
     // 2 K / f in the centre-of-mass frame, f the degrees of freedom (observe/thermo.hpp)
     virtual double temperature() const = 0;
     virtual double degrees_of_freedom() const = 0;
-    // Pressure since the previous call (or since t = 0): momentum given to the walls per
-    // unit time and area on walled axes, the collision virial on periodic ones, with the
-    // mean of the temperatures at both ends as log.csv has it.
-    virtual double pressure() = 0;
+    // The pressure tensor since the previous call (or since t = 0), as log.csv's
+    // pressure_xx ... (observe/pressure.hpp): the walls' momentum on a walled axis's
+    // diagonal, the virial elsewhere, the kinetic part the mean of both ends' K_ab.
+    virtual SymTensor pressure_tensor() = 0;
 
     // Something a script does each time `trigger` fires inside run() (a recording of
     // frames), in every later run(); the trigger's grid is anchored at t = 0 / step 0.

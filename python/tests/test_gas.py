@@ -57,6 +57,14 @@ def test_event_gas_relaxes_to_rayleigh_and_obeys_the_equation_of_state():
     eta = n * np.pi * 0.25 / L**2
     # ~2e5 wall hits give the pressure to ~0.3%; walls shift it by O(sigma / L) = 0.5%
     assert P * L**2 / (n * T) == pytest.approx(henderson_z(eta), rel=0.02)
+    # the tensor over the next interval: symmetric; each diagonal component is one axis's
+    # wall momentum, ~1200 hits over 200 time units (scatter ~3 %); the off-diagonal is
+    # the kinetic sum m u_x u_y / V and collisions (~2 % of P, 1 / sqrt(N)); 4-5 sigma bounds
+    g.run(time=g.time + 200.0)
+    t = g.pressure(tensor=True)
+    assert t.shape == (2, 2) and t[0, 1] == t[1, 0]
+    assert abs(t[0, 1]) < 0.1 * P
+    assert t[0, 0] == pytest.approx(P, rel=0.12) and t[1, 1] == pytest.approx(P, rel=0.12)
 
     # Kolmogorov-Smirnov distance of the N speeds from the Rayleigh distribution at the
     # measured T: below 1.63 / sqrt(N), the 1% critical value, for independent samples.
