@@ -65,11 +65,9 @@ template <int D, class Engine> class Gas : public GasModel {
     SymTensor pressure_tensor() override {
         const double t = engine_->time();
         const SpeciesKinetics k = kinetics();
-        SymTensor mean_thermal;
-        for (int c = 0; c < 6; ++c)
-            mean_thermal[c] = 0.5 * (last_thermal_[c] + k.thermal_tensor[c]);
-        const SymTensor P = interval_pressure_tensor(
-            engine_->box(), last_counters_, engine_->counters(), t - last_time_, mean_thermal);
+        const SymTensor P =
+            interval_pressure_tensor(engine_->box(), last_counters_, engine_->counters(),
+                                     t - last_time_, sym_midpoint(last_thermal_, k.thermal_tensor));
         last_counters_ = engine_->counters();
         last_time_ = t;
         last_thermal_ = k.thermal_tensor;

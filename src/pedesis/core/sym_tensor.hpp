@@ -41,6 +41,13 @@ template <int D> double sym_trace(const SymTensor& t) {
     return s;
 }
 
+// (a + b) / 2 by component: a quantity's mean over an interval from its two ends
+inline SymTensor sym_midpoint(const SymTensor& a, const SymTensor& b) {
+    SymTensor m;
+    for (int c = 0; c < 6; ++c) m[c] = 0.5 * (a[c] + b[c]);
+    return m;
+}
+
 // t += w x y (symmetrised: (w_a y_b + w_b y_a) / 2 off the diagonal)
 template <int D, class V> void add_sym_outer(SymTensor& t, const V& w, const V& y, double k = 1.0) {
     for (int a = 0; a < D; ++a)

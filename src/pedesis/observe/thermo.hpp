@@ -100,11 +100,10 @@ SpeciesKinetics measure_kinetics(const ParticleStore<D>& p, const std::array<boo
         const double e = 0.5 * m * norm2(p.velocity[i]);
         k.kinetic[s] += e;
         k.total_kinetic += e;
-        const double thermal =
-            k.conserved_components > 0 ? 0.5 * m * norm2(p.velocity[i] - centre) : e;
+        const Vec<D> u = p.velocity[i] - centre;
+        const double thermal = k.conserved_components > 0 ? 0.5 * m * norm2(u) : e;
         k.thermal[s] += thermal;
         k.total_thermal += thermal;
-        const Vec<D> u = p.velocity[i] - centre;
         add_sym_outer<D>(k.thermal_tensor, u, u, m);
         mass[s] += m;
         ++k.mobile[s];

@@ -83,11 +83,8 @@ HardMeasurement HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D
     const double T = k.temperature();
     const double dt = t - record_.last_log_time;
     const double meanT = 0.5 * (T + record_.last_temperature);
-    SymTensor mean_thermal;
-    for (int c = 0; c < 6; ++c) {
-        mean_thermal[c] = 0.5 * (k.thermal_tensor[c] + record_.last_thermal[c]);
-        record_.integral_thermal_dt[c] += mean_thermal[c] * dt;
-    }
+    const SymTensor mean_thermal = sym_midpoint(k.thermal_tensor, record_.last_thermal);
+    for (int c = 0; c < 6; ++c) record_.integral_thermal_dt[c] += mean_thermal[c] * dt;
     const SymTensor tensor =
         interval_pressure_tensor(box, record_.last_counters, counters, dt, mean_thermal);
     const double P = sym_trace<D>(tensor) / D;
