@@ -11,9 +11,9 @@
 #include "validate_command.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/simd_level.hpp"
 
 #if PEDESIS_HAVE_GRAPHICS
-#include "pedesis/core/simd_level.hpp"
 #include "render_command.hpp"
 #include "view_command.hpp"
 #endif
