@@ -11,7 +11,7 @@
 #include "pedesis/soft/pair_potentials.hpp"
 #include "pedesis/soft/polar_align.hpp"
 #include "pedesis/soft/self_propulsion.hpp"
-#include "pedesis/soft/spatial_sort.hpp"
+#include "pedesis/spatial/spatial_sort.hpp"
 #include "pedesis/soft/velocity_verlet.hpp"
 
 #include <fmt/core.h>

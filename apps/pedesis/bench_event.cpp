@@ -11,6 +11,8 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <random>
+#include <utility>
 
 #include <sys/resource.h>
 
@@ -27,6 +29,7 @@ struct BenchEventOptions {
     double skin = -1.0;
     std::uint64_t seed = 1;
     double size_ratio = 1.0; // < 1: equimolar binary mixture of diameters 1 and size_ratio
+    bool shuffle = false;    // the start in random storage order
 };
 
 // An equimolar binary mixture in the rock-salt arrangement: the large spheres
@@ -100,6 +103,14 @@ template <int D> void run_bench(const BenchEventOptions& o) {
         p.position =
             lattice_sites<D>(kind, Vec<D>::filled(-0.5 * L), Vec<D>::filled(0.5 * L), open, o.n);
     }
+    if (o.shuffle) { // as a file from another program may come: no order in space
+        std::mt19937_64 rng(o.seed);
+        for (std::size_t i = p.size(); i > 1; --i) {
+            const std::size_t k = rng() % i;
+            std::swap(p.position[i - 1], p.position[k]);
+            std::swap(p.species[i - 1], p.species[k]);
+        }
+    }
     VelocitySpec vs;
     vs.kind = VelocityKind::maxwell_boltzmann;
     vs.temperature = 1.0;
@@ -168,6 +179,9 @@ void add_bench_event(CLI::App& bench) {
     cmd->add_option("--size-ratio", o->size_ratio,
                     "3D: equimolar binary mixture of diameters 1 and this ratio (< 1), started "
                     "in the rock-salt arrangement; --n must be 8 k^3");
+    cmd->add_flag("--shuffle", o->shuffle,
+                  "Start with the particles stored in random order (the positions are the "
+                  "lattice's, the velocities drawn by tag as without it)");
     cmd->callback([o] {
         if (o->dim == 2)
             run_bench<2>(*o);

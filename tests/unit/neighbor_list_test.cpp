@@ -325,6 +325,59 @@ TEST(NeighborList, ColoursFollowTheBlocks) {
     EXPECT_EQ(nl3.colours(), 8);
 }
 
+// Chunks of one colour run at the same time: no particle may be written (as a row's
+// owner or as an entry of its row) by two of them. Large systems take blocks wider than
+// two cells (set_grid); the colouring must keep their writes apart all the same, on
+// random points and on a lattice whose points lie on the cell faces.
+template <int D>
+void check_colours_write_apart(const Box<D>& box, const std::vector<Vec<D>>& pos, double r_cut,
+                               double skin, int expected_width) {
+    SCOPED_TRACE(test::describe_box(box));
+    NeighborList<D> nl(box, r_cut, skin);
+    nl.build(pos);
+    EXPECT_EQ(nl.block_width(), expected_width);
+    std::vector<std::size_t> seen(pos.size());
+    std::size_t rows = 0;
+    for (int k = 0; k < nl.colours(); ++k) {
+        const auto [first, last] = nl.chunks_of_colour(k);
+        std::fill(seen.begin(), seen.end(), std::size_t(-1));
+        for (std::size_t c = first; c < last; ++c) {
+            auto mark = [&](std::uint32_t p) {
+                ASSERT_TRUE(seen[p] == std::size_t(-1) || seen[p] == c)
+                    << "particle " << p << " written by chunks " << seen[p] << " and " << c
+                    << " of colour " << k;
+                seen[p] = c;
+            };
+            for (std::uint32_t i : nl.chunk(c)) {
+                ++rows;
+                mark(i);
+                for (const std::uint32_t* j = nl.begin(i); j != nl.end(i); ++j) mark(*j);
+            }
+        }
+    }
+    EXPECT_EQ(rows, pos.size());
+}
+
+TEST(NeighborList, WideBlocksOfOneColourWriteApart) {
+    // 2D, r_list 3.1: 161 cells along, rounded to 160 (cells of 3.125) for blocks of 8
+    const Box<2> big(Vec<2>{{500.0, 500.0}}, {true, true});
+    check_colours_write_apart(big, test::random_positions(big, 99000, 91, 6), 2.1, 1.0, 8);
+    std::vector<Vec<2>> lattice; // spacing 1.5625: a point on every cell face
+    for (int x = 0; x < 320; ++x)
+        for (int y = 0; y < 320; ++y)
+            lattice.push_back(Vec<2>{{-250.0 + 1.5625 * x, -250.0 + 1.5625 * y}});
+    check_colours_write_apart(big, lattice, 2.1, 1.0, 8);
+    // walls: no rounding, and the last block is narrower
+    const Box<2> walled(Vec<2>{{500.0, 400.0}}, {false, false});
+    check_colours_write_apart(walled, test::random_positions(walled, 80000, 92, 6), 2.1, 1.0, 8);
+    // 3D, r_list 1.5: 49 cells, 48 for blocks of 3
+    const Box<3> cube(Vec<3>{{75.0, 75.0, 75.0}}, {true, true, true});
+    check_colours_write_apart(cube, test::random_positions(cube, 100000, 93, 6), 1.2, 0.3, 3);
+    // a small system keeps blocks of two cells
+    const Box<2> small(Vec<2>{{60.0, 60.0}}, {true, true});
+    check_colours_write_apart(small, test::random_positions(small, 1400, 94, 6), 2.1, 1.0, 2);
+}
+
 // Rows identical (content and order) with 1, 2 and 3 threads, so force sums are too.
 template <int D>
 void check_thread_independence(const Box<D>& box, const std::vector<Vec<D>>& pos, double r_cut,

@@ -54,10 +54,13 @@ SteppedEngine<D> expect_same_as_event(const ParticleStore<D>& p, const Box<D>& b
     SteppedEngine<D> st(p, box, params);
     for (int k = 0; k < steps; ++k) st.step();
     const ParticleStore<D>& got = st.particles();
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const Vec<D> dr = box.minimum_image(got.position[i] - want.position[i]);
-        EXPECT_LT(norm(dr), tol) << "position of particle " << i;
-        EXPECT_LT(norm(got.velocity[i] - want.velocity[i]), tol) << "velocity of particle " << i;
+    // (each engine keeps its own storage order: matched by tag)
+    const std::vector<std::uint32_t> gi = got.index_of_tags(), wi = want.index_of_tags();
+    for (std::size_t t = 0; t < p.size(); ++t) {
+        const Vec<D> dr = box.minimum_image(got.position[gi[t]] - want.position[wi[t]]);
+        EXPECT_LT(norm(dr), tol) << "position of particle " << t;
+        EXPECT_LT(norm(got.velocity[gi[t]] - want.velocity[wi[t]]), tol)
+            << "velocity of particle " << t;
     }
     EXPECT_EQ(st.counters().pair_collisions, ev.counters().pair_collisions);
     EXPECT_EQ(st.counters().wall_collisions, ev.counters().wall_collisions);

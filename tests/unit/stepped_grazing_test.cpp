@@ -64,7 +64,8 @@ template <int D> double missed_fraction(double x, int trials) {
         StopLimits lim;
         lim.time = st.time();
         ev.run(lim);
-        const double dv = norm(st.particles().velocity[0] - ev.lazy_particles().velocity[0]);
+        const auto& q = ev.lazy_particles(); // (stored in its own order: tag 0 looked up)
+        const double dv = norm(st.particles().velocity[0] - q.velocity[q.index_of_tags()[0]]);
         if (dv > 1e-9) {
             ++missed;
             // only a chord shorter than one step's relative displacement can be missed

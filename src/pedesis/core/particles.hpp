@@ -28,6 +28,18 @@ template <int D> struct ParticleStore {
     double radius(std::size_t i) const { return species_table[species[i]].radius; }
     double mass(std::size_t i) const { return species_table[species[i]].mass; }
 
+    // New storage index i holds the particle that was at order[i].
+    void apply_order(const std::vector<std::uint32_t>& order) {
+        auto permute = [&](auto& v) {
+            auto old = v;
+            for (std::size_t i = 0; i < order.size(); ++i) v[i] = old[order[i]];
+        };
+        permute(position);
+        permute(velocity);
+        permute(tag);
+        permute(species);
+    }
+
     // storage index of each tag
     std::vector<std::uint32_t> index_of_tags() const {
         std::vector<std::uint32_t> idx(size());

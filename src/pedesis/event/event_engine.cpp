@@ -7,6 +7,7 @@
 #include "pedesis/event/collision_rules.hpp"
 #include "pedesis/event/prediction.hpp"
 #include "pedesis/io/binary_stream.hpp"
+#include "pedesis/spatial/spatial_sort.hpp"
 
 #include <fmt/format.h>
 
@@ -93,6 +94,11 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
         }
         box_.wrap(p_.position[i]);
     }
+    // Storage along a space-filling curve, so that a particle's neighbours lie in nearby
+    // cache lines: events come in no spatial order, and at 10^6 particles a neighbour
+    // stored far away costs a miss per array in every prediction. Only a fresh start is
+    // sorted; a restored engine keeps its order and so continues bit for bit.
+    p_.apply_order(space_filling_order(box_, p_.position, p_.tag, 2.0 * max_radius));
 
     t_.assign(p_.size(), 0.0);
     count_.assign(p_.size(), 0);
@@ -717,9 +723,11 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
                 const double contact = contact_now(i, j);
                 if (d < contact * (1.0 - rel_tol)) {
                     std::ostringstream m;
-                    m << tag_name(p_.tag[i]) << " and " << tag_name(p_.tag[j])
-                      << " overlap: centres " << d << " apart, contact distance " << contact
-                      << " (overlap " << contact - d << ")";
+                    // the lower tag first, whatever the storage order
+                    m << tag_name(std::min(p_.tag[i], p_.tag[j])) << " and "
+                      << tag_name(std::max(p_.tag[i], p_.tag[j])) << " overlap: centres " << d
+                      << " apart, contact distance " << contact << " (overlap " << contact - d
+                      << ")";
                     if (now_ == 0.0 && counters_.pair_collisions == 0) throw InputError(m.str());
                     throw RunError("at t = " + std::to_string(now_) + ": " + m.str());
                 }

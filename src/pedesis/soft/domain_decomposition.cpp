@@ -1,7 +1,7 @@
 #include "pedesis/soft/domain_decomposition.hpp"
 
 #include "pedesis/core/error.hpp"
-#include "pedesis/soft/spatial_sort.hpp"
+#include "pedesis/spatial/spatial_sort.hpp"
 
 #include <fmt/format.h>
 

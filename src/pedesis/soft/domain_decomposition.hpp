@@ -51,7 +51,7 @@ template <int D> class DomainDecomposition {
     // Particles that left this domain go to their domain's process (any distance: a
     // particle may cross several domains), then the ghosts are chosen anew. With
     // sort_cell > 0 each process's particles are first ordered along a space-filling
-    // curve of that spacing (soft/spatial_sort.hpp), as the periodic sort of one process.
+    // curve of that spacing (spatial/spatial_sort.hpp), as the periodic sort of one process.
     void redistribute(SoftState<D>& s, double sort_cell = 0.0);
     // Positions, velocities and directors of the ghosts, from their owners.
     void refresh_ghosts(SoftState<D>& s);

@@ -2,7 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
-#include "pedesis/soft/spatial_sort.hpp"
+#include "pedesis/spatial/spatial_sort.hpp"
 
 #include <algorithm>
 #include <cmath>

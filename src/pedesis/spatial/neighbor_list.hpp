@@ -92,6 +92,10 @@ template <int D> class NeighborList {
     int colours() const {
         return static_cast<int>(colour_block_.size()) - 1;
     }
+    // Width of the colour blocks in cells (wider in large systems: set_grid).
+    int block_width() const {
+        return block_width_;
+    }
     std::array<std::size_t, 2> chunks_of_colour(int k) const {
         return {colour_chunk_[k], colour_chunk_[k + 1]};
     }
@@ -161,6 +165,10 @@ template <int D> class NeighborList {
     bool half_stencil_ = false;
     std::vector<std::array<int, D>> forward_;
     void set_grid(int reach);
+    // The colour blocks' width in cells for k colours per axis (set_grid).
+    int choose_block_width(int k, int reach) const;
+    static constexpr int max_block_width = 8;
+    int block_width_ = 2;
     // Each build: the particles in that order (sweep_), cut at block boundaries into
     // chunks of about sweep_chunk particles: chunk c is sweep_[chunk_start_[c] ..
     // chunk_start_[c + 1]), and chunks [colour_chunk_[k], colour_chunk_[k + 1]) have
