@@ -231,6 +231,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     cell_of_.resize(n);
     by_cell_.resize(n);
     ref_.resize(n);
+    home_.resize(n);
     auto wrapped = [&](std::size_t i) {
         Vec<D> r = pos[i];
         box_.wrap(r);
@@ -245,7 +246,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     for (std::size_t i = 0; i < n; ++i) { // cell_start_[c] is c's cursor here
         const std::uint32_t k = cell_start_[cell_of_[i]]++;
         by_cell_[k] = static_cast<std::uint32_t>(i);
-        ref_[k] = wrapped(i);
+        home_[i] = ref_[k] = wrapped(i);
     }
     // each cursor now stands at the next cell's start: shift them back
     for (std::size_t c = n_cells; c > 0; --c) cell_start_[c] = cell_start_[c - 1];
@@ -498,6 +499,9 @@ template <int D> void NeighborList<D>::reorder(const std::vector<std::uint32_t>&
             *j = new_index[*j];
     // ref_ stays in cell order; only the particle each entry belongs to is renamed
     for (auto& k : by_cell_) k = new_index[k];
+    std::vector<Vec<D>> home(n_);
+    for (std::size_t i = 0; i < n_; ++i) home[i] = home_[order[i]];
+    home_ = std::move(home);
     for (auto& k : sweep_) k = new_index[k];
 }
 
@@ -509,7 +513,7 @@ template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& 
 #pragma omp parallel for schedule(static) reduction(|| : moved) if (sn >= parallel_min)
     for (std::int64_t k = 0; k < sn; ++k) {
         // written as !(<=) so that a NaN position asks for a rebuild (which reports it)
-        if (!(norm2(box_.minimum_image(pos[by_cell_[k]] - ref_[k])) <= lim2)) moved = true;
+        if (!(norm2(box_.minimum_image(pos[k] - home_[k])) <= lim2)) moved = true;
     }
     return moved;
 }
@@ -519,7 +523,7 @@ template <int D> std::size_t NeighborList<D>::memory_bytes() const {
            (cell_start_.capacity() + by_cell_.capacity() + cell_of_.capacity()) *
                sizeof(std::uint32_t) +
            rows_.capacity() * sizeof(std::uint64_t) + capacity_ * sizeof(std::uint32_t) +
-           ref_.capacity() * sizeof(Vec<D>) +
+           (ref_.capacity() + home_.capacity()) * sizeof(Vec<D>) +
            (sweep_cells_.capacity() + block_end_.capacity() + colour_block_.capacity() +
             sweep_.capacity()) *
                sizeof(std::uint32_t) +

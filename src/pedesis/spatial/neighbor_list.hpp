@@ -115,9 +115,7 @@ template <int D> class NeighborList {
     // The positions of the last build, in storage order: building again from them gives
     // the same rows (a checkpoint restores the list this way).
     std::vector<Vec<D>> build_positions() const {
-        std::vector<Vec<D>> r(n_);
-        for (std::size_t k = 0; k < n_; ++k) r[by_cell_[k]] = ref_[k];
-        return r;
+        return std::vector<Vec<D>>(home_.begin(), home_.begin() + static_cast<std::ptrdiff_t>(n_));
     }
 
     // Rows of particles further than this from every periodic face may use raw position
@@ -200,11 +198,13 @@ template <int D> class NeighborList {
     std::size_t entries_ = 0, capacity_ = 0;
     // The particles in cell order: those of cell c are
     // by_cell_[cell_start_[c] .. cell_start_[c + 1]), in increasing index, and ref_[k]
-    // is the position of by_cell_[k] at the build. Scans then read contiguous memory,
-    // and ref_ doubles as the reference for needs_rebuild. cell_of_ is each particle's
-    // cell during the binning.
+    // is the position of by_cell_[k] at the build. Scans then read contiguous memory.
+    // home_ holds the same positions in storage order, the reference of needs_rebuild:
+    // read in cell order it cost a cache miss per cell at 10^6 particles (7% of the 2D
+    // ABP step), and in storage order it streams beside the positions. cell_of_ is each
+    // particle's cell during the binning.
     std::vector<std::uint32_t> cell_start_, by_cell_, cell_of_;
-    std::vector<Vec<D>> ref_;
+    std::vector<Vec<D>> ref_, home_;
 };
 
 extern template class NeighborList<2>;
