@@ -11,8 +11,8 @@
 #include "pedesis/soft/pair_potentials.hpp"
 #include "pedesis/soft/polar_align.hpp"
 #include "pedesis/soft/self_propulsion.hpp"
-#include "pedesis/spatial/spatial_sort.hpp"
 #include "pedesis/soft/velocity_verlet.hpp"
+#include "pedesis/spatial/spatial_sort.hpp"
 
 #include <fmt/core.h>
 #include <omp.h>

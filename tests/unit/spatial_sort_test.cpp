@@ -8,8 +8,8 @@
 #include "pedesis/soft/langevin.hpp"
 #include "pedesis/soft/pair_force.hpp"
 #include "pedesis/soft/pair_potentials.hpp"
-#include "pedesis/spatial/spatial_sort.hpp"
 #include "pedesis/soft/velocity_verlet.hpp"
+#include "pedesis/spatial/spatial_sort.hpp"
 
 #include <gtest/gtest.h>
 

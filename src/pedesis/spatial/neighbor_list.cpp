@@ -56,13 +56,14 @@ NeighborList<D>::NeighborList(const Box<D>& box, double r_cut, double skin)
 template <int D> int NeighborList<D>::choose_block_width(int k, int reach) const {
     const int narrowest = (2 * reach + k - 2) / (k - 1);
     // In a large system the colour sweep is what brings particles through the caches:
-    // each colour visits its blocks and the cells round them, so blocks of w cells
-    // touch ((w + 1) / w)^D of the box per colour pass at reach 1, 2.25 box-sweeps per
+    // each colour visits its blocks and the cells round them, so with blocks of w cells
+    // a colour pass touches ((w + 1) / 2w)^D of the box at reach 1: 2.25 box-sweeps per
     // step in 2D with w = 2 against 1.27 with w = 8. Once the state outgrows the caches
-    // (2D ABP at 10^6) that made the pair loop a third slower per particle than at
-    // 36,000. Wider blocks are taken only where every axis keeps 8 blocks of each colour
-    // or more (threads stay balanced; small systems keep the narrowest width) and the
-    // periodic multiple widens the cells by 5% at most (a list build scans more).
+    // (2D ABP at 10^6) that is the likely reason the pair loop was a third slower per
+    // particle than at 36,000 (wider blocks: 1.20x, docs/performance.md). Wider blocks are taken
+    // only where every axis keeps 8 blocks of each colour or more (threads stay balanced; small
+    // systems keep the narrowest width) and the periodic multiple widens the cells by 5% at most (a
+    // list build scans more).
     std::array<int, D> along{};
     int fewest = CellList<D>::max_cells_along;
     for (int a = 0; a < D; ++a) {
