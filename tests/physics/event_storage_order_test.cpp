@@ -6,24 +6,21 @@
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/setup/velocities.hpp"
+#include "support/gas_builder.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <bit>
 #include <cstdint>
-#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
 
 using namespace pedesis;
+using pedesis::test::same_bits;
 
 namespace {
-
-template <int D> bool same_bits(const Vec<D>& a, const Vec<D>& b) {
-    return std::memcmp(&a, &b, sizeof(a)) == 0;
-}
 
 // A gas on a lattice (fcc or hexagonal) with Maxwell-Boltzmann velocities; with
 // `mixture`, every third particle is a smaller species (radius ratio 0.6).

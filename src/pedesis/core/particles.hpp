@@ -9,6 +9,12 @@
 
 namespace pedesis {
 
+// Reorders v so that new index i holds what was at order[i] (order a permutation).
+template <class T> void permute_by(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
+    const std::vector<T> old = v;
+    for (std::size_t i = 0; i < order.size(); ++i) v[i] = old[order[i]];
+}
+
 template <int D> struct ParticleStore {
     std::vector<Vec<D>> position;
     std::vector<Vec<D>> velocity;
@@ -30,14 +36,10 @@ template <int D> struct ParticleStore {
 
     // New storage index i holds the particle that was at order[i].
     void apply_order(const std::vector<std::uint32_t>& order) {
-        auto permute = [&](auto& v) {
-            auto old = v;
-            for (std::size_t i = 0; i < order.size(); ++i) v[i] = old[order[i]];
-        };
-        permute(position);
-        permute(velocity);
-        permute(tag);
-        permute(species);
+        permute_by(position, order);
+        permute_by(velocity, order);
+        permute_by(tag, order);
+        permute_by(species, order);
     }
 
     // storage index of each tag

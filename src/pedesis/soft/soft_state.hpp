@@ -41,10 +41,7 @@ template <int D> struct SoftState {
     // Reorders storage so that new index i holds the particle at old index order[i]; tags
     // travel with the particles, so nothing a user sees changes.
     void apply_order(const std::vector<std::uint32_t>& order) {
-        for_each_field([&](auto& v) {
-            auto old = v;
-            for (std::size_t i = 0; i < order.size(); ++i) v[i] = old[order[i]];
-        });
+        for_each_field([&](auto& v) { permute_by(v, order); });
     }
 
     // Calls f on every per-particle array (what travels with a particle).
