@@ -297,6 +297,29 @@ TEST_F(MpiRun, AnUnwritableRunDirectoryStopsEveryProcess) {
     EXPECT_EQ(read("taken"), "a file where the run directory should be\n");
 }
 
+// Two particles at the same place, in the domain of process 1 (x > 0 of a 2 x 1 grid)
+// or across the face between the domains: bad input, refused at set-up as on one process
+// (exit 2, one message naming both, nothing written), not a NaN at the first log row.
+TEST_F(MpiRun, CoincidentParticlesAreRefusedOnceOnEveryProcess) {
+    for (const std::string at : {"[6.0, 1.0]", "[0.0, 1.0]"}) {
+        write("same.toml", "dimension = 2\ndynamics = \"brownian\"\nseed = 2\n[box]\n"
+                           "length = 24.0\n[[species]]\nname = \"A\"\ncount = 40\n"
+                           "radius = 0.5\n[[species]]\nname = \"B\"\nposition = " +
+                               at + "\nradius = 0.5\n[[species]]\nname = \"C\"\nposition = " + at +
+                               "\nradius = 0.5\n[initial]\npositions = \"random\"\n"
+                               "min_distance = 1.2\n[[force]]\nname = \"harmonic\"\nk = 10.0\n"
+                               "[[integrator]]\nname = \"brownian\"\nT = 0.1\ngamma = 1.0\n"
+                               "[run]\ndt = 0.01\nsteps = 10\n[output]\nprogress = false\n");
+        const CliResult r = run_mpi(2, "run same.toml --out same", dir, 120);
+        EXPECT_EQ(r.exit_code, 2) << at << r.output;
+        EXPECT_EQ(occurrences(r.output, "pedesis: error:"), 1u) << at << r.output;
+        EXPECT_NE(r.output.find("particles 40 and 41 start at the same position"),
+                  std::string::npos)
+            << at << r.output;
+        EXPECT_FALSE(std::filesystem::exists(dir / "same" / "log.csv")) << at;
+    }
+}
+
 // Two particles placed almost on top of each other in the domain of process 1 (x > 0 of
 // a 2 x 1 grid) blow up at the first step there; every process stops with exit 3, the
 // message of process 1 is printed once (by process 0), and the run directory keeps its

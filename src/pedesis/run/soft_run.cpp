@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -35,17 +36,30 @@ namespace {
 // Two particles at the same place (coinciding lattices of two species, a file with a
 // repeated position) have pair forces without a direction: 0/0, and the run would stop
 // at its first log row on a NaN. Bad input, named at set-up; one pass over the list.
+// Under a domain decomposition each process checks its share and ghosts (every pair lies
+// in some process's list), and the lowest process that found one tells the others, so
+// that every process stops with the same message (exit 2) and none waits for another.
 template <int D>
 void refuse_coincident_particles(const SoftState<D>& s, const NeighborList<D>& list,
-                                 const std::string& file) {
-    for (std::size_t i = 0; i < list.size(); ++i)
+                                 const std::string& file, Communicator* comm) {
+    std::string message;
+    for (std::size_t i = 0; i < list.size() && message.empty(); ++i)
         for (const std::uint32_t* j = list.begin(i); j != list.end(i); ++j)
-            if (norm2(s.box.minimum_image(s.p.position[i] - s.p.position[*j])) == 0.0)
-                throw InputError(fmt::format(
+            if (norm2(s.box.minimum_image(s.p.position[i] - s.p.position[*j])) == 0.0) {
+                message = fmt::format(
                     "{}: particles {} and {} start at the same position: the force between "
                     "them has no direction; move one of them (two lattices of different "
                     "species in the same region coincide: give each its own region)",
-                    file, s.p.tag[i], s.p.tag[*j]));
+                    file, std::min(s.p.tag[i], s.p.tag[*j]), std::max(s.p.tag[i], s.p.tag[*j]));
+                break;
+            }
+    if (comm && comm->size() > 1) {
+        const double none = -std::numeric_limits<double>::infinity();
+        const double first = comm->max(message.empty() ? none : -comm->rank());
+        if (first == none) return;
+        message = comm->broadcast(message, static_cast<int>(-first));
+    }
+    if (!message.empty()) throw InputError(message);
 }
 
 std::vector<Species> species_table(const RunConfig& c) {
@@ -85,10 +99,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         evolver_->set_sort_interval(c_.sort_every);
         for (const auto* list : {&c_.forces, &c_.torques, &c_.integrators})
             for (const auto& spec : *list) add_plugin(*evolver_, spec, table, c_.seed);
-        // (on one process: under MPI the list is built after the decomposition, on each
-        // process's share, and a refusal there would not reach the others)
+        // (under MPI the list is built after the decomposition, on each process's share)
         if (!o_.restart && !(o_.comm && o_.comm->size() > 1))
-            refuse_coincident_particles(state_, evolver_->neighbor_list(), c_.file);
+            refuse_coincident_particles(state_, evolver_->neighbor_list(), c_.file, nullptr);
         if (o_.restart) {
             load_soft_checkpoint(*o_.restart, c_, state_, *evolver_, book_);
             if (state_.step >= c_.steps)
@@ -128,6 +141,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             // output exists; a restored run has its list already (building now could
             // rebuild it at another point of the step than the continuous run did)
             evolver_->neighbor_list();
+            if (domain_ && !o_.restart)
+                refuse_coincident_particles(state_, evolver_->neighbor_list(), c_.file, o_.comm);
         }
     }
 
