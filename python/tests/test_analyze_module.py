@@ -215,6 +215,17 @@ def test_dense_clusters_keep_only_particles_with_enough_neighbours():
     assert np.all(labels[degree < 5] == -1) and len(sizes) == 1
 
 
+def test_dense_clusters_of_a_gas_without_a_dense_phase_are_none():
+    # no particle of a dilute gas has 5 neighbours within 1.1: every label -1, no sizes
+    # (this raised IndexError on the empty set of clusters)
+    gas = np.random.default_rng(3).uniform(0, 40, (50, 2))
+    labels, sizes = pa.clusters(gas, pa.Box((40.0, 40.0)), cutoff=1.1, min_neighbours=5)
+    assert len(labels) == 50 and np.all(labels == -1)
+    assert len(sizes) == 0
+    labels, sizes = pa.clusters(np.zeros((0, 2)), pa.Box((40.0, 40.0)), cutoff=1.1)
+    assert len(labels) == 0 and len(sizes) == 0
+
+
 def test_read_frames_of_a_run_unwraps_to_the_logged_msd(tmp_path, run_cli):
     # a soft run's MSD since step 0, measured from its GSD frames (wrapped positions plus
     # image counts), is the log's msd column at each frame (float32 positions: 1e-5)

@@ -98,6 +98,8 @@ def clusters(positions, box, cutoff, min_neighbours=0):
     _, labels = connected_components(graph, directed=False)
     # the components of left-out particles are singletons of their own; drop them
     kept = np.unique(labels[member])
+    if len(kept) == 0:  # no particle has min_neighbours: no dense phase
+        return np.full(n, -1), np.zeros(0, dtype=int)
     relabel = np.full(labels.max() + 1 if n else 0, -1)
     relabel[kept] = np.arange(len(kept))
     labels = np.where(member, relabel[labels], -1)
