@@ -1,6 +1,7 @@
 #include "pedesis/spatial/neighbor_list.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/particles.hpp"
 #include "pedesis/core/stage.hpp"
 #include "pedesis/spatial/near_rows.hpp"
 
@@ -491,18 +492,14 @@ template <int D> void NeighborList<D>::reorder(const std::vector<std::uint32_t>&
     std::vector<std::uint32_t> new_index(n_);
     for (std::size_t i = 0; i < n_; ++i) new_index[order[i]] = static_cast<std::uint32_t>(i);
     // Rows stay where they are; the particle each belongs to and the entries are renamed.
-    std::vector<std::uint64_t> rows(n_);
-    for (std::size_t i = 0; i < n_; ++i) rows[i] = rows_[order[i]];
-    rows_ = std::move(rows);
+    permute_by(rows_, order);
     for (std::size_t i = 0; i < n_; ++i)
         for (std::uint32_t* j = neighbors_.get() + (rows_[i] >> length_bits);
              j != neighbors_.get() + (rows_[i] >> length_bits) + count(i); ++j)
             *j = new_index[*j];
     // ref_ stays in cell order; only the particle each entry belongs to is renamed
     for (auto& k : by_cell_) k = new_index[k];
-    std::vector<Vec<D>> home(n_);
-    for (std::size_t i = 0; i < n_; ++i) home[i] = home_[order[i]];
-    home_ = std::move(home);
+    permute_by(home_, order);
     for (auto& k : sweep_) k = new_index[k];
 }
 
