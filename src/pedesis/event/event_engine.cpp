@@ -450,6 +450,15 @@ template <int D> template <bool Growing> void EventEngine<D>::predict_with(std::
     }
     const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
     const std::uint16_t n = n_nbr_[i];
+    // Every neighbour's data is asked for before any is used: the loop below branches on
+    // whether each pair approaches, which no predictor guesses, and each miss of a branch
+    // would otherwise discard the loads started for the neighbours after it.
+    for (std::uint16_t k = 0; k < n; ++k) {
+        const std::uint32_t j = list[k];
+        __builtin_prefetch(&t_[j]);
+        __builtin_prefetch(&p_.position[j]);
+        __builtin_prefetch(&p_.velocity[j]);
+    }
     for (std::uint16_t k = 0; k < n; ++k) {
         const std::uint32_t j = list[k];
         const std::size_t sj = p_.species[j];
@@ -555,21 +564,39 @@ template <int D> void EventEngine<D>::resum_kinetic_energy() {
     kinetic_ = kinetic_exact_ = k;
 }
 
+// Most of a particle's neighbours stay neighbours when it rebuilds its list, and their
+// rows are cache misses: only the rows of partners that leave or join are touched
+// (the rebuilt row and a joining partner's row end as a full rebuild would leave them;
+// a staying partner's row keeps its order, which matters only for exactly tied events).
 template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     advance(i);
     box_.wrap(p_.position[i]);
-    const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
-    for (std::uint16_t k = 0; k < n_nbr_[i]; ++k) remove_neighbor(list[k], i);
-    n_nbr_[i] = 0;
     CellList<D>& grid = grids_[class_of_[p_.species[i]]];
     grid.remove(i);
     centre_[i] = p_.position[i];
     grid.insert(i, centre_[i]);
+    fresh_list_.clear();
     for_each_candidate(i, [&](std::uint32_t j) {
         if (j == i) return;
         const double cut = contact(i, j) + skin_;
-        if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut) add_neighbor(i, j);
+        if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut)
+            fresh_list_.push_back(j);
     });
+    const auto holds = [](const std::uint32_t* first, std::size_t n, std::uint32_t j) {
+        return std::find(first, first + n, j) != first + n;
+    };
+    const std::uint32_t* row = &nbr_[static_cast<std::size_t>(i) * stride_];
+    old_list_.assign(row, row + n_nbr_[i]);
+    for (std::uint32_t j : old_list_)
+        if (!holds(fresh_list_.data(), fresh_list_.size(), j)) remove_neighbor(j, i);
+    while (fresh_list_.size() > stride_) grow_lists();
+    for (std::uint32_t j : fresh_list_) {
+        if (holds(old_list_.data(), old_list_.size(), j)) continue;
+        if (n_nbr_[j] == stride_) grow_lists();
+        nbr_[static_cast<std::size_t>(j) * stride_ + n_nbr_[j]++] = i;
+    }
+    std::copy(fresh_list_.begin(), fresh_list_.end(), &nbr_[static_cast<std::size_t>(i) * stride_]);
+    n_nbr_[i] = static_cast<std::uint16_t>(fresh_list_.size());
     ++counters_.list_rebuilds;
 }
 
