@@ -9,10 +9,12 @@
 // chaotic, and one different bit grows to O(1) within a few collision times.
 #include "pedesis/core/error.hpp"
 #include "pedesis/event/event_engine.hpp"
+#include "support/event_lists.hpp"
 #include "support/gas_builder.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -196,6 +198,26 @@ TEST(Restart, RejectsCorruptOrMismatchedCheckpoints) {
         std::stringstream in("");
         EXPECT_THROW(EventEngine<2>::load(in, EventParams{}), InputError);
     }
+}
+
+TEST(Restart, RejectsEventPartnersThatNameNoParticleShellOrWall) {
+    // A walled 2D box has wall codes -3 ... -6; one below them would reach process_wall
+    // with a wall index out of range, and one at N or above a particle that is not there.
+    auto gas = make_gas(equal_gas<2>(100, 0.3, false, 1));
+    EventEngine<2> e(gas.particles, gas.box, EventParams{});
+    std::stringstream buffer;
+    e.save(buffer);
+    const std::string bytes = buffer.str();
+    const std::size_t at = test::read_event_lists(e).first_event_partner_offset;
+    const auto load_with_partner = [&](std::int32_t partner) {
+        std::string edited = bytes;
+        std::memcpy(edited.data() + at, &partner, sizeof partner);
+        std::stringstream in(edited);
+        return EventEngine<2>::load(in, EventParams{});
+    };
+    for (std::int32_t ok : {-6, -1, 99}) EXPECT_NO_THROW(load_with_partner(ok)) << ok;
+    for (std::int32_t bad : {-7, -100, std::numeric_limits<std::int32_t>::min(), 100})
+        EXPECT_THROW(load_with_partner(bad), InputError) << bad;
 }
 
 TEST(Restart, LoadValidatesParameters) {

@@ -21,6 +21,8 @@ template <int D> struct EventLists {
     std::vector<std::uint16_t> species;
     std::vector<Vec<D>> centre;
     std::vector<std::vector<std::uint32_t>> neighbours; // per particle, as stored
+    // where in the checkpoint the first particle's event partner (an int32) lies
+    std::size_t first_event_partner_offset = 0;
 };
 
 template <int D> EventLists<D> read_event_lists(const EventEngine<D>& engine) {
@@ -70,6 +72,8 @@ template <int D> EventLists<D> read_event_lists(const EventEngine<D>& engine) {
     get(buf, out.centre);
     get(buf, count);
     get(buf, ev_time);
+    out.first_event_partner_offset =
+        static_cast<std::size_t>(buf.tellg()) + sizeof(std::uint64_t); // past the length
     get(buf, ev_partner);
     get(buf, ev_count);
     get(buf, last_collision);

@@ -896,7 +896,10 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
         for (std::uint16_t k = 0; k < e.n_nbr_[i]; ++k)
             if (e.nbr_[i * e.stride_ + k] >= n)
                 throw InputError("checkpoint: corrupt neighbour list");
-        if (e.ev_partner_[i] >= static_cast<std::int32_t>(n))
+        // a particle, no event, the shell or one of the 2 D walls (a code below them would
+        // index a wall that does not exist)
+        if (e.ev_partner_[i] < wall_event_base - (2 * D - 1) ||
+            e.ev_partner_[i] >= static_cast<std::int32_t>(n))
             throw InputError("checkpoint: corrupt event");
     }
     e.make_grids();
