@@ -575,13 +575,20 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     grid.remove(i);
     centre_[i] = p_.position[i];
     grid.insert(i, centre_[i]);
-    fresh_list_.clear();
+    // the cells' chains first, every candidate's centre asked for on the way, then the
+    // distances (as in predict_with: no mispredicted branch discards the loads)
+    candidates_.clear();
     for_each_candidate(i, [&](std::uint32_t j) {
-        if (j == i) return;
+        __builtin_prefetch(&centre_[j]);
+        candidates_.push_back(j);
+    });
+    fresh_list_.clear();
+    for (std::uint32_t j : candidates_) {
+        if (j == i) continue;
         const double cut = contact(i, j) + skin_;
         if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut)
             fresh_list_.push_back(j);
-    });
+    }
     const auto holds = [](const std::uint32_t* first, std::size_t n, std::uint32_t j) {
         return std::find(first, first + n, j) != first + n;
     };

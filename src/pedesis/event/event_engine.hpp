@@ -185,7 +185,7 @@ template <int D> class EventEngine {
     std::uint32_t stride_ = 0; // neighbour slots per particle
     std::vector<std::uint16_t> n_nbr_;
     std::vector<std::uint32_t> nbr_;
-    std::vector<std::uint32_t> fresh_list_, old_list_; // rebuild_list's scratch
+    std::vector<std::uint32_t> candidates_, fresh_list_, old_list_; // rebuild_list's scratch
 
     // Cell lists over the list centres, one per size class (species whose radii lie
     // within a factor 2 of the class's largest), each with cells of the class's own
