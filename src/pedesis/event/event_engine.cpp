@@ -354,9 +354,7 @@ template <int D> void EventEngine<D>::build_all_lists() {
     for (std::uint32_t i = 0; i < n; ++i) {
         std::uint32_t c = 0;
         for_each_candidate(i, [&](std::uint32_t j) {
-            if (j == i) return;
-            const double cut = contact(i, j) + skin_;
-            if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut) ++c;
+            if (j != i && list_partners(i, j)) ++c;
         });
         max_count = std::max(max_count, c);
     }
@@ -365,9 +363,7 @@ template <int D> void EventEngine<D>::build_all_lists() {
     nbr_.assign(static_cast<std::size_t>(n) * stride_, 0);
     for (std::uint32_t i = 0; i < n; ++i) {
         for_each_candidate(i, [&](std::uint32_t j) {
-            if (j <= i) return;
-            const double cut = contact(i, j) + skin_;
-            if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut) add_neighbor(i, j);
+            if (j > i && list_partners(i, j)) add_neighbor(i, j);
         });
     }
 }
@@ -584,10 +580,7 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     });
     fresh_list_.clear();
     for (std::uint32_t j : candidates_) {
-        if (j == i) continue;
-        const double cut = contact(i, j) + skin_;
-        if (norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut)
-            fresh_list_.push_back(j);
+        if (j != i && list_partners(i, j)) fresh_list_.push_back(j);
     }
     const auto holds = [](const std::uint32_t* first, std::size_t n, std::uint32_t j) {
         return std::find(first, first + n, j) != first + n;

@@ -133,6 +133,11 @@ template <int D> class EventEngine {
     double contact(std::uint32_t i, std::uint32_t j) const {
         return radius_[p_.species[i]] + radius_[p_.species[j]];
     }
+    // The one criterion of every list build: list centres within contact + skin.
+    bool list_partners(std::uint32_t i, std::uint32_t j) const {
+        const double cut = contact(i, j) + skin_;
+        return norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut;
+    }
     double radius_now(std::size_t species) const {
         return radius_[species] + radius_rate_[species] * (now_ - radius_time_);
     }
