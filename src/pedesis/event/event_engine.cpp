@@ -455,27 +455,71 @@ template <int D> template <bool Growing> void EventEngine<D>::predict_with(std::
         __builtin_prefetch(&p_.position[j]);
         __builtin_prefetch(&p_.velocity[j]);
     }
-    for (std::uint16_t k = 0; k < n; ++k) {
-        const std::uint32_t j = list[k];
-        const std::size_t sj = p_.species[j];
-        const Vec<D> xj = p_.position[j] + p_.velocity[j] * (now_ - t_[j]);
-        const Vec<D> dr = box_.minimum_image(xi - xj);
-        const Vec<D> dv = vi - p_.velocity[j];
-        double tc;
-        if constexpr (Growing)
-            tc = growing_pair_collision_time(dr, dv, ri + radius_now(sj),
-                                             radius_rate_[si] + radius_rate_[sj]);
-        else
-            tc = pair_collision_time_before(dr, dv, ri + radius_[sj], best);
-        if (tc < best) {
-            best = tc;
-            partner = static_cast<std::int32_t>(j);
+    if (!Growing && pair_times_ != nullptr) {
+        earliest_listed_lanes(i, xi, vi, ri, best, partner);
+    } else {
+        for (std::uint16_t k = 0; k < n; ++k) {
+            const std::uint32_t j = list[k];
+            const std::size_t sj = p_.species[j];
+            const Vec<D> xj = p_.position[j] + p_.velocity[j] * (now_ - t_[j]);
+            const Vec<D> dr = box_.minimum_image(xi - xj);
+            const Vec<D> dv = vi - p_.velocity[j];
+            double tc;
+            if constexpr (Growing)
+                tc = growing_pair_collision_time(dr, dv, ri + radius_now(sj),
+                                                 radius_rate_[si] + radius_rate_[sj]);
+            else
+                tc = pair_collision_time_before(dr, dv, ri + radius_[sj], best);
+            if (tc < best) {
+                best = tc;
+                partner = static_cast<std::int32_t>(j);
+            }
         }
     }
     if (best == never) partner = no_event;
     ev_time_[i] = now_ + best;
     ev_partner_[i] = partner;
     ev_count_[i] = partner >= 0 ? count_[partner] : 0;
+}
+
+// predict_with's scan of the list with the batch kernel of the AVX2 and AVX-512 sets.
+// It picks what the scalar loop picks: the first neighbour whose time is below the
+// earliest so far, where pair_collision_time_before with that bound would not have
+// returned `never` early (c > -2 b bound); that test is rarely reached, so the scan's
+// one branch is rarely taken.
+template <int D>
+void EventEngine<D>::earliest_listed_lanes(std::uint32_t i, const Vec<D>& xi, const Vec<D>& vi,
+                                           double ri, double& best, std::int32_t& partner) {
+    const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
+    const std::size_t n = n_nbr_[i];
+    const std::size_t room = pair_times_room(n);
+    if (lane_scratch_.size() < 3 * room) lane_scratch_.resize(3 * room);
+    const PairTimes out{lane_scratch_.data(), lane_scratch_.data() + room,
+                        lane_scratch_.data() + 2 * room};
+    PairTimesInput<D> in{p_.position.data(),
+                         p_.velocity.data(),
+                         t_.data(),
+                         p_.species.data(),
+                         radius_.data(),
+                         list,
+                         n,
+                         xi,
+                         vi,
+                         ri,
+                         now_,
+                         {},
+                         {}};
+    for (int a = 0; a < D; ++a) {
+        in.half[a] = box_.periodic(a) ? box_.hi(a) : never;
+        in.length[a] = box_.length(a);
+    }
+    pair_times_(in, out);
+    for (std::size_t k = 0; k < n; ++k) {
+        if (out.time[k] < best && !(out.c[k] > -2.0 * out.b[k] * best)) {
+            best = out.time[k];
+            partner = static_cast<std::int32_t>(list[k]);
+        }
+    }
 }
 
 template <int D> void EventEngine<D>::set_restitution(double xi) {

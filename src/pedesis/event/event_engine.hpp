@@ -20,6 +20,7 @@
 #include "pedesis/core/collision_counters.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_queue.hpp"
+#include "pedesis/event/pair_times.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
 #include <array>
@@ -156,6 +157,8 @@ template <int D> class EventEngine {
     bool pressure_window_full() const;
     void schedule_growth_step();
     template <bool Growing> void predict_with(std::uint32_t i);
+    void earliest_listed_lanes(std::uint32_t i, const Vec<D>& xi, const Vec<D>& vi, double ri,
+                               double& best, std::int32_t& partner);
 
     ParticleStore<D> p_; // positions here are r_i at time t_i
     Box<D> box_;
@@ -191,6 +194,10 @@ template <int D> class EventEngine {
     std::vector<std::uint16_t> n_nbr_;
     std::vector<std::uint32_t> nbr_;
     std::vector<std::uint32_t> candidates_, fresh_list_, old_list_; // rebuild_list's scratch
+    // predict_with's batch kernel (core/simd_level.hpp; nullptr: the scalar loop) and
+    // its output
+    PairTimesKernel<D> pair_times_ = pair_times_for<D>(simd_level());
+    std::vector<double> lane_scratch_;
 
     // Cell lists over the list centres, one per size class (species whose radii lie
     // within a factor 2 of the class's largest), each with cells of the class's own

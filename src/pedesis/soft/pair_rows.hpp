@@ -11,6 +11,7 @@
 // often; evaluating the packed ones keeps list order, so the sums are the same whatever
 // the thread count.
 #include "pedesis/core/box.hpp"
+#include "pedesis/core/lanes.hpp"
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/core/species.hpp"
 #include "pedesis/spatial/neighbor_list.hpp"
@@ -133,20 +134,6 @@ template <int D, class Pair, bool Uniform>
 // lanes share an instruction. Each row's own force is summed per lane and the four lanes
 // added at the end, in a fixed order: bit-identical for any thread count, not equal in
 // the last bits to pair_rows (the sse2 set).
-using lanes4 = double __attribute__((vector_size(32)));
-using mask4 = std::int64_t __attribute__((vector_size(32)));
-
-[[gnu::always_inline]] inline lanes4 lane_sqrt(lanes4 x) {
-    lanes4 r;
-    for (int l = 0; l < 4; ++l) r[l] = std::sqrt(x[l]);
-    return r;
-}
-
-[[gnu::always_inline]] inline lanes4 select(mask4 m, lanes4 yes, lanes4 no) {
-    return reinterpret_cast<lanes4>((reinterpret_cast<mask4>(yes) & m) |
-                                    (reinterpret_cast<mask4>(no) & ~m));
-}
-
 template <class Pair>
 [[gnu::always_inline]] inline lanes4 lanes_force_over_r(const Pair& pair, lanes4 r2, double rsum) {
     if constexpr (requires { pair.force_over_r_at(r2, rsum); })

@@ -1,0 +1,27 @@
+#pragma once
+// Four doubles in one vector, in GCC's vector types: a kernel written with them once is
+// compiled for the registers of each kernel set it is inlined into (core/simd_level.hpp;
+// AVX2: one ymm per four lanes). Arithmetic on lanes rounds each lane exactly as the
+// scalar expression does; the build never contracts a * b + c into a fused
+// multiply-add (ISO C++ mode), so a kernel that fuses says so with explicit FMAs.
+#include <cmath>
+#include <cstdint>
+
+namespace pedesis {
+
+using lanes4 = double __attribute__((vector_size(32)));
+using mask4 = std::int64_t __attribute__((vector_size(32)));
+
+[[gnu::always_inline]] inline lanes4 lane_sqrt(lanes4 x) {
+    lanes4 r;
+    for (int l = 0; l < 4; ++l) r[l] = std::sqrt(x[l]);
+    return r;
+}
+
+// yes where m is set (all ones), no elsewhere
+[[gnu::always_inline]] inline lanes4 select(mask4 m, lanes4 yes, lanes4 no) {
+    return reinterpret_cast<lanes4>((reinterpret_cast<mask4>(yes) & m) |
+                                    (reinterpret_cast<mask4>(no) & ~m));
+}
+
+} // namespace pedesis
