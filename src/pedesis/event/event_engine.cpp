@@ -407,6 +407,14 @@ template <int D> void EventEngine<D>::grow_lists() {
     stride_ = new_stride;
 }
 
+// A row is read first by the prediction that follows every event, and missed the caches
+// there; asked for before the event's own work, it arrives meanwhile.
+template <int D> void EventEngine<D>::prefetch_list(std::uint32_t i) const {
+    const std::uint32_t* row = &nbr_[static_cast<std::size_t>(i) * stride_];
+    __builtin_prefetch(row);
+    __builtin_prefetch(row + std::min<std::uint32_t>(16, stride_ - 1)); // the next line
+}
+
 template <int D> void EventEngine<D>::advance(std::uint32_t i) {
     const double dt = now_ - t_[i];
     if (dt != 0.0) {
@@ -696,8 +704,10 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
         }
         now_ = te;
         const std::int32_t partner = ev_partner_[i];
+        prefetch_list(i);
         if (partner >= 0) {
             const auto j = static_cast<std::uint32_t>(partner);
+            prefetch_list(j);
             if (count_[j] != ev_count_[i]) {
                 ++counters_.stale_events;
                 predict(i);

@@ -124,6 +124,7 @@ template <int D> class EventEngine {
     void grow_lists();
     void predict(std::uint32_t i);
     void advance(std::uint32_t i);
+    void prefetch_list(std::uint32_t i) const;
     void process_pair(std::uint32_t i, std::uint32_t j);
     void process_wall(std::uint32_t i, std::int32_t code);
     void rebuild_list(std::uint32_t i);
