@@ -630,12 +630,20 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
         __builtin_prefetch(&centre_[j]);
         candidates_.push_back(j);
     });
-    fresh_list_.clear();
+    // Branch-free (about one candidate in six is a partner, at random): each candidate
+    // is stored and the cursor advances on a partner.
+    fresh_list_.resize(candidates_.size());
+    std::size_t partners = 0;
     for (std::uint32_t j : candidates_) {
-        if (j != i && list_partners(i, j)) fresh_list_.push_back(j);
+        fresh_list_[partners] = j;
+        partners += j != i && list_partners(i, j);
     }
+    fresh_list_.resize(partners);
+    // (every entry compared, no early exit: which rows hold whom is as random)
     const auto holds = [](const std::uint32_t* first, std::size_t n, std::uint32_t j) {
-        return std::find(first, first + n, j) != first + n;
+        bool found = false;
+        for (std::size_t k = 0; k < n; ++k) found |= first[k] == j;
+        return found;
     };
     const std::uint32_t* row = &nbr_[static_cast<std::size_t>(i) * stride_];
     old_list_.assign(row, row + n_nbr_[i]);
