@@ -1,6 +1,7 @@
 #include "bench_event.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/simd_level.hpp"
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/setup/velocities.hpp"
@@ -152,6 +153,7 @@ template <int D> void run_bench(const BenchEventOptions& o) {
     fmt::print("list_rebuilds_per_collision: {:.4f}  stale_events_per_collision: {:.4f}\n",
                static_cast<double>(c1.list_rebuilds - c0.list_rebuilds) / collisions,
                static_cast<double>(c1.stale_events - c0.stale_events) / collisions);
+    fmt::print("cpu_kernels: {}\n", simd_name(simd_level()));
     fmt::print("collisions_per_second: {:.0f}\n", collisions / seconds);
     fmt::print("bytes_per_particle: {:.1f}\n",
                static_cast<double>(engine->memory_bytes()) / static_cast<double>(o.n));

@@ -1,5 +1,5 @@
-// PEDESIS_SIMD and what pedesis says about its CPU kernels: --version and a soft run's
-// console and summary name the set in use; an unknown set or one the CPU lacks is bad
+// PEDESIS_SIMD and what pedesis says about its CPU kernels: --version and a soft or event
+// run's console and summary name the set in use; an unknown set or one the CPU lacks is bad
 // input (exit 2, one message).
 #include "cli/cli_support.hpp"
 
@@ -82,6 +82,58 @@ log_every = 10
         std::ifstream in(dir / out / "summary.json");
         const auto summary = nlohmann::json::parse(in);
         EXPECT_EQ(summary.at("cpu_kernels"), simd_name(level));
+    }
+}
+
+// The event engine's predictions run in the kernel set too (four pairs per instruction
+// with AVX2), and must not change a bit of the run: the log and the checkpoint of every
+// set are the sse2 run's, byte for byte.
+TEST_F(CpuKernels, AnEventRunSaysWhichSetRanAndEverySetRunsItTheSame) {
+    write("gas.toml", R"(dimension = 3
+seed = 5
+[box]
+length = 12.0
+[[species]]
+name = "big"
+count = 300
+radius = 0.5
+[[species]]
+name = "small"
+count = 200
+radius = 0.3
+mass = 0.4
+[initial]
+positions = "random"
+velocities = "maxwell_boltzmann"
+temperature = 1.0
+[run]
+collisions_per_particle = 30
+[output]
+log_interval = 0.5
+)");
+    std::string log_sse2, checkpoint_sse2;
+    for (const SimdLevel level : available_simd_levels()) {
+        const std::string out = std::string("event_") + simd_name(level);
+        const CliResult r = with_simd(simd_name(level), "run gas.toml --out " + out, dir);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_NE(r.output.find(std::string("CPU kernels: ") + simd_name(level)), std::string::npos)
+            << r.output;
+        std::ifstream in(dir / out / "summary.json");
+        const auto summary = nlohmann::json::parse(in);
+        EXPECT_EQ(summary.at("cpu_kernels"), simd_name(level));
+        EXPECT_GE(summary.at("pair_collisions").get<double>(), 30.0 * 500);
+        const std::string log = read(out + "/log.csv");
+        const std::string checkpoint = read(out + "/checkpoint.bin");
+        ASSERT_GT(log.size(), 1000u);
+        ASSERT_GT(checkpoint.size(), 1000u);
+        if (level == SimdLevel::sse2) {
+            log_sse2 = log;
+            checkpoint_sse2 = checkpoint;
+        } else {
+            EXPECT_TRUE(log == log_sse2) << "log.csv differs from the sse2 run's";
+            EXPECT_TRUE(checkpoint == checkpoint_sse2)
+                << "checkpoint.bin differs from the sse2 run's";
+        }
     }
 }
 

@@ -1,5 +1,7 @@
 #include "pedesis/run/event_run.hpp"
 
+#include "pedesis/core/simd_level.hpp"
+
 #include "pedesis/run/engine_params.hpp"
 
 #include "pedesis/core/error.hpp"
@@ -115,6 +117,8 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
             "pedesis: {}D event-driven run, N = {}, box {}, eta = {:.4f}, output in {}\n", D,
             engine_->size(), box_text(engine_->box()),
             packing_fraction(engine_->lazy_particles(), engine_->box()), o_.out_dir.string());
+        // (every set gives the same trajectory; the speed differs)
+        console_ << fmt::format("  CPU kernels: {}\n", simd_name(simd_level()));
         wall_start_ = std::chrono::steady_clock::now();
         collisions_start_ = engine_->counters().pair_collisions;
     }
@@ -122,6 +126,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     nlohmann::json summary(const char* /*stopped_by*/) override {
         const auto& e = *engine_;
         nlohmann::json j = out_.summary(e.lazy_particles(), e.box(), e.time(), e.counters());
+        j["cpu_kernels"] = simd_name(simd_level());
         if (growing_) {
             const auto& g = e.growth();
             j["growth"] = {{"growing", g.growing},
