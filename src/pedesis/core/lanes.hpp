@@ -1,9 +1,10 @@
 #pragma once
 // Four doubles in one vector, in GCC's vector types: a kernel written with them once is
 // compiled for the registers of each kernel set it is inlined into (core/simd_level.hpp;
-// AVX2: one ymm per four lanes). Arithmetic on lanes rounds each lane exactly as the
-// scalar expression does; the build never contracts a * b + c into a fused
-// multiply-add (ISO C++ mode), so a kernel that fuses says so with explicit FMAs.
+// AVX2: one ymm per four lanes). Arithmetic on lanes rounds each lane as the scalar
+// expression does, except that GCC contracts a * b + c into a fused multiply-add
+// wherever the target has FMA (in ISO C++ mode too): a kernel that must give the
+// scalar code's bits is compiled for a target without FMA (event/pair_times.hpp).
 #include <cmath>
 #include <cstdint>
 

@@ -5,9 +5,10 @@
 // and a prediction meets a dozen such branches.
 //
 // The kernel computes, per neighbour, the quantities pair_collision_time_before decides
-// from, by the same operations in the same order (the build never fuses a multiply and
-// an add), so that the caller's scan over them picks the partner and time the scalar
-// loop picks, bit for bit, in every kernel set (EventEngine::predict_with).
+// from, by the same operations in the same order and without fused multiply-adds (it
+// is compiled for AVX2 without FMA, below), so that the caller's scan over them picks
+// the partner and time the scalar loop picks, bit for bit, in every kernel set
+// (EventEngine::predict_with).
 #include "pedesis/core/lanes.hpp"
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/core/vec.hpp"

@@ -1,10 +1,9 @@
 #include "pedesis/run/event_run.hpp"
 
-#include "pedesis/core/simd_level.hpp"
-
 #include "pedesis/run/engine_params.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/simd_level.hpp"
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
