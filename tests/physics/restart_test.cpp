@@ -109,6 +109,13 @@ void restart_case(bool periodic, double restitution, double tc, double size_rati
     expect_same_state(one, first);
 }
 
+// The engine's checkpoint, as the bytes a file would hold.
+template <int D> std::string checkpoint_bytes(const EventEngine<D>& e) {
+    std::stringstream buffer;
+    e.save(buffer);
+    return buffer.str();
+}
+
 } // namespace
 
 TEST(Restart, BitForBitPeriodic2D) {
@@ -177,9 +184,7 @@ TEST(Restart, ManyRestartsInARow) {
 TEST(Restart, RejectsCorruptOrMismatchedCheckpoints) {
     auto gas = make_gas(equal_gas<2>(100, 0.3, true, 1));
     EventEngine<2> e(gas.particles, gas.box, EventParams{});
-    std::stringstream buffer;
-    e.save(buffer);
-    const std::string bytes = buffer.str();
+    const std::string bytes = checkpoint_bytes(e);
     {
         std::stringstream in(bytes.substr(0, bytes.size() / 2));
         EXPECT_THROW(EventEngine<2>::load(in, EventParams{}), InputError);
@@ -205,9 +210,7 @@ TEST(Restart, RejectsEventPartnersThatNameNoParticleShellOrWall) {
     // with a wall index out of range, and one at N or above a particle that is not there.
     auto gas = make_gas(equal_gas<2>(100, 0.3, false, 1));
     EventEngine<2> e(gas.particles, gas.box, EventParams{});
-    std::stringstream buffer;
-    e.save(buffer);
-    const std::string bytes = buffer.str();
+    const std::string bytes = checkpoint_bytes(e);
     const std::size_t at = test::read_event_lists(e).first_event_partner_offset;
     const auto load_with_partner = [&](std::int32_t partner) {
         std::string edited = bytes;
@@ -226,9 +229,7 @@ TEST(Restart, LoadValidatesParameters) {
     // silently run (restitution 1.5 would pump energy into the gas).
     auto gas = make_gas(equal_gas<2>(100, 0.3, true, 1));
     EventEngine<2> e(gas.particles, gas.box, EventParams{});
-    std::stringstream buffer;
-    e.save(buffer);
-    const std::string bytes = buffer.str();
+    const std::string bytes = checkpoint_bytes(e);
     auto load_with = [&](const EventParams& params) {
         std::stringstream in(bytes);
         return EventEngine<2>::load(in, params);
