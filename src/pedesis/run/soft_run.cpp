@@ -289,7 +289,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         j["list_rebuilds"] = evolver_->list_builds();
         j["frames"] = book_.frames;
         j["wall_seconds"] = wall;
-        j["particle_steps_per_second"] = rate();
+        j["particle_steps_per_second"] = rate(wall); // the same window as wall_seconds
         j["stepping_seconds"] = stepping_.seconds;
         return j;
     }
@@ -542,8 +542,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     }
 
     double rate() const {
-        const double wall =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+        return rate(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count());
+    }
+    double rate(double wall) const {
         return wall > 0 ? static_cast<double>(state_.step - step_start_) *
                               static_cast<double>(particles_) / wall
                         : 0.0;
