@@ -47,8 +47,8 @@ def lennard_jones(ctx):
     count, cutoff = 500, 3.0
     length = (count / NIST_RHO) ** (1.0 / 3.0)
     dt, equilibration, every = 0.005, 4000, 100
-    production = ctx.pick(20000, 200000)
-    blocks = 10
+    production = ctx.pick(80000, 200000)
+    blocks = 20
     forces = table("force", "lj", epsilon=1.0, cutoff=cutoff, tail=True)
     integrators = table("integrator", "langevin", T=NIST_T, gamma=1.0)
     config = soft_run(3, "langevin", count, length, 3, equilibration + production, dt, 20,
