@@ -25,6 +25,9 @@ namespace {
 // Below this many particles a parallel region costs more than the loop it splits.
 constexpr std::int64_t parallel_min = 4096;
 
+// Cells of r_list / reach, scanned reach deep: 1 or 2 (build()).
+constexpr int max_stencil_reach = 2;
+
 // The cell list links particles with int32 (-1 = none).
 constexpr std::size_t max_particles = std::numeric_limits<std::int32_t>::max();
 
@@ -289,6 +292,15 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     // further than r_list in the direct difference, and a shifted difference shorter
     // than r_list <= L/2 is the minimum image.
     const bool by_image = half_stencil_;
+    // For the scans' trimming (trim_segments below): the cells' widths, and a margin far
+    // above the rounding of a position's offset in its cell or of its binning.
+    if (reach_ > max_stencil_reach) throw std::logic_error("neighbour list: stencil reach above 2");
+    std::array<double, D> cell_width;
+    double trim_margin = 0.0;
+    for (int a = 0; a < D; ++a) {
+        cell_width[a] = cells_.cell_width(a);
+        trim_margin = std::max(trim_margin, 1e-9 * box_.length(a));
+    }
     auto wraps = [&](std::int64_t c) {
         for (int a = 0; a < D; ++a) {
             const auto ca = static_cast<int>(c % along[a]);
@@ -353,6 +365,16 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                 // what each range adds to ri - rj: the periodic image of its cell (a plain
                 // array: an array of Vec would be zeroed, 3 kB, for every cell)
                 double image[stencil_max][D];
+                // With the half stencil each range is one segment of a stencil row: cells
+                // at x offsets seg_x[r][0] .. seg_x[r][1] from this cell (consecutive
+                // cell indices), at the offsets seg_o[r] on the other axes.
+                std::array<std::array<int, 2>, stencil_max> seg_x;
+                std::array<std::array<int, D>, stencil_max> seg_o;
+                // seg_start[r][k]: where the segment's k-th cell starts (k = its length:
+                // where it ends), copied here once per cell rather than read from
+                // cell_start_ for each particle
+                std::array<std::array<std::uint32_t, 2 * max_stencil_reach + 2>, stencil_max>
+                    seg_start;
                 int nr = 0;
                 std::size_t cand = 0; // candidates of each particle of this cell (at most)
                 auto add_cell = [&](std::size_t nc, const Vec<D>& im) {
@@ -371,16 +393,50 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                         range[nr++] = {b, e};
                     }
                 };
-                if (half_stencil_) {
-                    // the cell itself first (each particle scans only the ones after it),
-                    // then the forward cells
-                    add_cell(static_cast<std::size_t>(c), Vec<D>{});
-                    std::array<int, D> cc;
+                std::array<int, D> cc; // this cell's coordinates
+                {
                     std::int64_t rest = c;
                     for (int a = 0; a < D; ++a) {
                         cc[a] = static_cast<int>(rest % along[a]);
                         rest /= along[a];
                     }
+                }
+                // a cell at offset o joins the last segment where it continues it along x
+                std::size_t seg_end_cell = 0; // the cell after the last segment's last
+                auto add_segment_cell = [&](std::size_t nc, const Vec<D>& im,
+                                            const std::array<int, D>& o) {
+                    const std::uint32_t b = cell_start_[nc], e = cell_start_[nc + 1];
+                    cand += e - b;
+                    bool continues = nr > 0 && seg_x[nr - 1][1] + 1 == o[0] && seg_end_cell == nc;
+                    for (int a = 1; a < D && continues; ++a) continues = seg_o[nr - 1][a] == o[a];
+                    for (int a = 0; a < D && continues; ++a) continues = image[nr - 1][a] == im[a];
+                    seg_end_cell = nc + 1;
+                    if (continues) {
+                        seg_x[nr - 1][1] = o[0];
+                        seg_start[nr - 1][o[0] - seg_x[nr - 1][0] + 1] = e;
+                        range[nr - 1][1] = e;
+                        return;
+                    }
+                    for (int a = 0; a < D; ++a) image[nr][a] = im[a];
+                    seg_x[nr] = {o[0], o[0]};
+                    seg_o[nr] = o;
+                    seg_start[nr][0] = b;
+                    seg_start[nr][1] = e;
+                    range[nr++] = {b, e};
+                };
+                // Each particle scans, of each segment, only the cells its sphere of
+                // r_list reaches (trim_segments below), with half-width cells only: with
+                // cells of r_list (reach 1) that trims a smaller share (a fifth of the
+                // cells in 3D, a tenth in 2D), and ABP in 2D ran 0.94x.
+                const bool trim = reach_ == max_stencil_reach;
+                if (half_stencil_) {
+                    // the cell itself first (each particle scans only the ones after it),
+                    // then the forward cells
+                    if (trim)
+                        add_segment_cell(static_cast<std::size_t>(c), Vec<D>{},
+                                         std::array<int, D>{});
+                    else
+                        add_cell(static_cast<std::size_t>(c), Vec<D>{});
                     for (const auto& o : forward_) {
                         std::size_t nc = 0;
                         bool inside = true;
@@ -403,7 +459,11 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                             nc = nc * static_cast<std::size_t>(along[a]) +
                                  static_cast<std::size_t>(x);
                         }
-                        if (inside) add_cell(nc, by_image ? im : Vec<D>{});
+                        if (!inside) continue;
+                        if (trim)
+                            add_segment_cell(nc, im, o);
+                        else
+                            add_cell(nc, im);
                     }
                 } else {
                     cells_.for_each_cell_within(
@@ -415,7 +475,46 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                 // and keeps every candidate in range; with the full one it keeps those of
                 // higher index.
                 const bool half = half_stencil_;
-                const detail::NearRowInput<D> near_input{ref, idx, range.data(), image, nr, rl2};
+                // The cells of a segment that a particle's sphere of r_list reaches: about
+                // two thirds of a 5^3 half stencil's cells. Those left out hold no pair, so
+                // the rows are the same. gap2[a][d + reach] is the squared distance along
+                // axis a from the particle to the cells at offset d, less a margin for
+                // positions binned by rounding.
+                std::array<Range, stencil_max> reached;
+                const detail::NearRowInput<D> near_input{
+                    ref, idx, trim ? reached.data() : range.data(), image, nr, rl2};
+                auto trim_segments = [&](const Vec<D>& ri) {
+                    // (branch-free: the branches of a first version mispredicted so often
+                    // that they cost what the shorter scans saved)
+                    double gap2[D][2 * max_stencil_reach + 1];
+                    for (int a = 0; a < D; ++a) {
+                        const double u = ri[a] - (box_.lo(a) + cc[a] * cell_width[a]);
+                        gap2[a][reach_] = 0.0;
+                        for (int d = 1; d <= reach_; ++d) {
+                            const double up = std::max(0.0, d * cell_width[a] - u - trim_margin);
+                            const double down =
+                                std::max(0.0, u + (d - 1) * cell_width[a] - trim_margin);
+                            gap2[a][reach_ + d] = up * up;
+                            gap2[a][reach_ - d] = down * down;
+                        }
+                    }
+                    for (int r = 0; r < nr; ++r) {
+                        double across = 0.0;
+                        for (int a = 1; a < D; ++a) across += gap2[a][seg_o[r][a] + reach_];
+                        const double left = rl2 - across;
+                        // the x offsets reached form [-behind, ahead] (the gaps grow with
+                        // the offset's size); none where left <= 0
+                        int behind = 0, ahead = 0;
+                        for (int d = 1; d <= reach_; ++d) {
+                            behind += gap2[0][reach_ - d] < left;
+                            ahead += gap2[0][reach_ + d] < left;
+                        }
+                        const int x0 = seg_x[r][0], x1 = seg_x[r][1];
+                        const int lo = std::min(std::max(x0, -behind), x1 + 1);
+                        const int hi = std::max(left > 0.0 ? std::min(x1, ahead) : lo - 1, lo - 1);
+                        reached[r] = {seg_start[r][lo - x0], seg_start[r][hi - x0 + 1]};
+                    }
+                };
                 auto row = [&](auto wrap, std::uint32_t kk, std::uint32_t i, const Vec<D>& ri) {
                     // Branch-free: about a sixth of the candidates hit, at random. Every
                     // candidate is stored and the cursor advances only on a hit; the row
@@ -425,7 +524,9 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     if (!stored) dst = sink.data();
                     std::size_t w = 0;
                     if (half) {
-                        // (the half stencil never wraps: each range carries its image)
+                        // (the half stencil never wraps: each range carries its image;
+                        // the particle's own cell is always reached)
+                        if (trim) trim_segments(ri);
                         w = near_row(near_input, kk + 1, ri, dst);
                     } else {
                         for (int r = 0; r < nr; ++r) {
