@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pedesis {
 
@@ -99,8 +100,22 @@ void Evolver<D>::restore_list(const std::vector<Vec<D>>& reference, std::uint64_
 
 template <int D> void Evolver<D>::wrap_all() {
     const auto n = static_cast<std::int64_t>(s_.owned());
+    // Bounds on the periodic axes only (a walled axis takes +-infinity): most particles
+    // are inside, tested without branches, and only those outside are wrapped and have
+    // their image counted (it was every particle's image read and written each step:
+    // 4% of a 3D WCA step).
+    Vec<D> lo, hi;
+    for (int a = 0; a < D; ++a) {
+        const bool periodic = s_.box.periodic(a);
+        lo[a] = periodic ? s_.box.lo(a) : -std::numeric_limits<double>::infinity();
+        hi[a] = periodic ? s_.box.hi(a) : std::numeric_limits<double>::infinity();
+    }
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) {
+        const Vec<D>& r = s_.p.position[i];
+        bool inside = true;
+        for (int a = 0; a < D; ++a) inside &= (r[a] >= lo[a]) & (r[a] < hi[a]);
+        if (inside) continue;
         const Vec<D> shift = s_.box.wrap(s_.p.position[i]);
         for (int a = 0; a < D; ++a) s_.image[i][a] += static_cast<std::int32_t>(shift[a]);
     }
