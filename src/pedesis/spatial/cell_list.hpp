@@ -165,6 +165,62 @@ template <int D> class CellList {
                 f(static_cast<std::uint32_t>(j));
         });
     }
+    // for_each_within(r, 1, f) less the cells that come no closer to r than `reach` (at
+    // a 3^3 stencil's corners, about a quarter of its cells): their particles are all
+    // further, and the rest come in the same order. Needs cells at least `reach` wide
+    // (cells_to_reach(reach) == 1), else it is for_each_within(r, cells_to_reach(reach)).
+    template <class F> void for_each_reaching(const Vec<D>& r, double reach, F&& f) const {
+        const int m = cells_to_reach(reach);
+        if (m != 1) {
+            for_each_within(r, m, f);
+            return;
+        }
+        const std::int32_t cell = cell_index(r);
+        // per axis, as scan_cells<3> visits them: the cells' offsets into head_ and the
+        // squared distance from r to each, less a margin far above the rounding of r's
+        // offset in its cell (0 where the axis is scanned whole: too few cells to tell
+        // one side from the other)
+        std::array<std::array<std::int32_t, 3>, D> offs;
+        std::array<std::array<double, 3>, D> gap2;
+        std::array<int, D> count;
+        for (int a = 0; a < D; ++a) {
+            const int c = (cell / stride_[a]) % n_[a];
+            const int n = n_[a];
+            const double w = cell_width(a);
+            const double u = r[a] - (box_.lo(a) + c * w);
+            const double margin = 1e-9 * box_.length(a);
+            const bool whole = box_.periodic(a) && 3 > n;
+            const int first = whole ? c : box_.periodic(a) ? c - 1 : std::max(0, c - 1);
+            count[a] = whole ? n : box_.periodic(a) ? 3 : std::min(n - 1, c + 1) - first + 1;
+            for (int k = 0; k < count[a]; ++k) {
+                const int d = first + k - c; // -1, 0 or +1 unless whole
+                const double g = whole || d == 0 ? 0.0
+                                 : d < 0         ? std::max(0.0, u - margin)
+                                                 : std::max(0.0, w - u - margin);
+                gap2[a][k] = g * g;
+                int x = first + k;
+                if (x < 0) x += n;
+                if (x >= n) x -= n;
+                offs[a][k] = x * stride_[a];
+            }
+        }
+        const double reach2 = reach * reach;
+        std::array<int, D> k{};
+        while (true) {
+            std::int32_t idx = 0;
+            double g2 = 0.0;
+            for (int a = 0; a < D; ++a) {
+                idx += offs[a][k[a]];
+                g2 += gap2[a][k[a]];
+            }
+            if (g2 < reach2)
+                for (std::int32_t j = head_[idx]; j != none; j = next_[j])
+                    f(static_cast<std::uint32_t>(j));
+            int a = 0;
+            while (a < D && ++k[a] == count[a]) k[a++] = 0;
+            if (a == D) break;
+        }
+    }
     // Cells along each axis needed to reach distance `reach` from any point of a cell,
     // whatever the binning's rounding.
     int cells_to_reach(double reach) const {
