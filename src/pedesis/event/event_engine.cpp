@@ -313,32 +313,23 @@ template <int D> void EventEngine<D>::make_grids() {
             }
     grids_.clear();
     for (double r : class_radius_) grids_.emplace_back(box_, 2.0 * r + skin_);
-    // cells each class's particles scan in each grid: reach = the two classes' largest
+    // how far each class's particles scan in each grid: the two classes' largest
     // radii + skin (CellList's margins keep a class's own reach at the 3-cell stencil)
     const std::size_t classes = class_radius_.size();
-    reach_cells_.assign(classes * classes, 1);
     reach_.assign(classes * classes, 0.0);
     for (std::size_t c = 0; c < classes; ++c)
-        for (std::size_t k = 0; k < classes; ++k) {
+        for (std::size_t k = 0; k < classes; ++k)
             reach_[c * classes + k] = class_radius_[c] + class_radius_[k] + skin_;
-            reach_cells_[c * classes + k] = grids_[k].cells_to_reach(reach_[c * classes + k]);
-        }
 }
 
 // Calls f(j) for every particle whose list centre may lie within contact + skin of i's:
-// in each class's grid, the cells within reach of i's class.
+// in each class's grid, the cells within reach of i's class, less those wholly beyond
+// it (CellList::for_each_reaching: about a quarter of a 3^3 stencil, at the corners,
+// whose chains and centres are cache misses at 10^6). The particles come in the
+// whole stencil's order, so the lists are those a scan of every cell would build.
 template <int D>
 template <class F>
 void EventEngine<D>::for_each_candidate(std::uint32_t i, F&& f) const {
-    const std::size_t classes = grids_.size();
-    const std::size_t c = class_of_[p_.species[i]];
-    for (std::size_t k = 0; k < classes; ++k)
-        grids_[k].for_each_within(centre_[i], reach_cells_[c * classes + k], f);
-}
-
-template <int D>
-template <class F>
-void EventEngine<D>::for_each_reaching_candidate(std::uint32_t i, F&& f) const {
     const std::size_t classes = grids_.size();
     const std::size_t c = class_of_[p_.species[i]];
     for (std::size_t k = 0; k < classes; ++k)
@@ -636,10 +627,8 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     grid.insert(i, centre_[i]);
     // the cells' chains first, every candidate's centre asked for on the way, then the
     // distances (as in predict_with: no mispredicted branch discards the loads)
-    // (about a quarter of the 3^3 cells, at the corners, are too far to hold a partner:
-    // their chains and centres, cache misses at 10^6, are not read)
     candidates_.clear();
-    for_each_reaching_candidate(i, [&](std::uint32_t j) {
+    for_each_candidate(i, [&](std::uint32_t j) {
         __builtin_prefetch(&centre_[j]);
         candidates_.push_back(j);
     });

@@ -207,12 +207,9 @@ template <int D> class EventEngine {
     std::vector<CellList<D>> grids_;
     std::vector<std::uint8_t> class_of_; // per species
     std::vector<double> class_radius_;   // per class: its largest radius
-    std::vector<int> reach_cells_;       // [class of i][class of grid]: cells to scan
-    std::vector<double> reach_;          // the same: the distance they must reach
+    std::vector<double> reach_;          // [class of i][class of grid]: the list reach
     void make_grids();
     template <class F> void for_each_candidate(std::uint32_t i, F&& f) const;
-    // for_each_candidate less the cells that come no closer than the reach (rebuild_list)
-    template <class F> void for_each_reaching_candidate(std::uint32_t i, F&& f) const;
     std::size_t grids_memory() const;
     EventQueue queue_;
     EventCounters<D> counters_;
