@@ -198,3 +198,37 @@ TEST(CellList, WiderReachMatchesBruteForce) {
     // cells apart, so it takes two
     EXPECT_EQ(cells.cells_to_reach(2.625), 2);
 }
+
+// The event engine's scan from a position outside a periodic box (a whole number of box
+// lengths off, as an unwrapped position would be) finds the same particles as from the
+// wrapped one: the cell is found by wrapping, so the cells' gaps must not be measured
+// from the unwrapped coordinate.
+TEST(CellList, ReachingScanFromOutsideThePeriodicBoxSeesTheWrappedOne) {
+    const Box<3> box(Vec<3>{{6.0, 7.5, 9.0}}, {true, true, true});
+    const double reach = 1.4;
+    const auto pos = test::random_positions(box, 300, 77, 0);
+    CellList<3> cells(box, reach);
+    cells.build(pos);
+    auto scan = [&](const Vec<3>& r) {
+        std::vector<std::uint32_t> seen;
+        cells.for_each_reaching(r, reach, [&](std::uint32_t j) { seen.push_back(j); });
+        return seen;
+    };
+    int checked = 0;
+    for (std::size_t i = 0; i < pos.size(); ++i)
+        for (const Vec<3>& shift :
+             {Vec<3>{{6.0, 0.0, 0.0}}, Vec<3>{{0.0, -15.0, 0.0}}, Vec<3>{{-6.0, 7.5, 18.0}}}) {
+            const auto wrapped = scan(pos[i]);
+            const auto unwrapped = scan(pos[i] + shift);
+            // every particle within the reach of the wrapped position is seen from both
+            for (std::uint32_t j = 0; j < pos.size(); ++j)
+                if (norm2(box.minimum_image(pos[i] - pos[j])) < reach * reach) {
+                    EXPECT_NE(std::find(wrapped.begin(), wrapped.end(), j), wrapped.end());
+                    EXPECT_NE(std::find(unwrapped.begin(), unwrapped.end(), j), unwrapped.end())
+                        << "particle " << i << " shifted by " << shift[0] << ", " << shift[1]
+                        << ", " << shift[2] << " misses " << j;
+                    ++checked;
+                }
+        }
+    EXPECT_GT(checked, 300);
+}

@@ -171,7 +171,13 @@ template <int D> class CellList {
     // (cells_to_reach(reach) == 1), else it is for_each_within(r, cells_to_reach(reach)).
     template <class F> void for_each_reaching(const Vec<D>& r, double reach, F&& f) const {
         const int m = cells_to_reach(reach);
-        if (m != 1) {
+        // the gaps below take r's offset in its cell; a position off a periodic axis's
+        // box (its cell found by wrapping) or not finite gets the whole stencil
+        bool in_box = true;
+        for (int a = 0; a < D; ++a)
+            in_box = in_box && std::isfinite(r[a]) &&
+                     (!box_.periodic(a) || (r[a] >= box_.lo(a) && r[a] < box_.hi(a)));
+        if (m != 1 || !in_box) {
             for_each_within(r, m, f);
             return;
         }
