@@ -56,8 +56,9 @@ template <int D> SoftState<D> two_species_state(std::uint64_t seed) {
     return test::permuted_storage(s, gen);
 }
 
-template <int D> void expect_gsd_round_trip() {
-    const fs::path path = fs::temp_directory_path() / ("pedesis_particle_file_rt.gsd");
+// `path` lies in the test's own directory: one shared name let the 2D and 3D tests,
+// run side by side by ctest -j, overwrite each other's file.
+template <int D> void expect_gsd_round_trip(const fs::path& path) {
     const SoftState<D> first = two_species_state<D>(1), last = two_species_state<D>(2);
     {
         GsdWriter<D> w(path);
@@ -112,11 +113,11 @@ template <int D> void expect_gsd_round_trip() {
 }
 
 TEST_F(ParticleFileTest, PedesisGsdFramesReadBackAsWritten2D) {
-    expect_gsd_round_trip<2>();
+    expect_gsd_round_trip<2>(dir / "rt.gsd");
 }
 
 TEST_F(ParticleFileTest, PedesisGsdFramesReadBackAsWritten3D) {
-    expect_gsd_round_trip<3>();
+    expect_gsd_round_trip<3>(dir / "rt.gsd");
 }
 
 template <int D> void expect_xyz_round_trip(const fs::path& path) {
