@@ -165,6 +165,15 @@ template <int D> class CellList {
                 f(static_cast<std::uint32_t>(j));
         });
     }
+    // The distance along one axis from a point at offset u in its cell (of width w) to the
+    // cell d cells away, less `margin` (never below 0): a lower bound on how far any
+    // particle binned there lies, where the margin exceeds the binning's rounding. The
+    // scans that skip cells beyond a reach (for_each_reaching, NeighborList's build)
+    // share it.
+    static double gap_to_cell(double u, double w, int d, double margin) {
+        const double g = d > 0 ? d * w - u : d < 0 ? u + (-d - 1) * w : 0.0;
+        return d == 0 ? 0.0 : std::max(0.0, g - margin);
+    }
     // for_each_within(r, 1, f) less the cells that come no closer to r than `reach` (at
     // a 3^3 stencil's corners, about a quarter of its cells): their particles are all
     // further, and the rest come in the same order. Needs cells at least `reach` wide
@@ -200,9 +209,7 @@ template <int D> class CellList {
             count[a] = whole ? n : box_.periodic(a) ? 3 : std::min(n - 1, c + 1) - first + 1;
             for (int k = 0; k < count[a]; ++k) {
                 const int d = first + k - c; // -1, 0 or +1 unless whole
-                const double g = whole || d == 0 ? 0.0
-                                 : d < 0         ? std::max(0.0, u - margin)
-                                                 : std::max(0.0, w - u - margin);
+                const double g = whole ? 0.0 : gap_to_cell(u, w, d, margin);
                 gap2[a][k] = g * g;
                 int x = first + k;
                 if (x < 0) x += n;

@@ -489,13 +489,10 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     double gap2[D][2 * max_stencil_reach + 1];
                     for (int a = 0; a < D; ++a) {
                         const double u = ri[a] - (box_.lo(a) + cc[a] * cell_width[a]);
-                        gap2[a][reach_] = 0.0;
-                        for (int d = 1; d <= reach_; ++d) {
-                            const double up = std::max(0.0, d * cell_width[a] - u - trim_margin);
-                            const double down =
-                                std::max(0.0, u + (d - 1) * cell_width[a] - trim_margin);
-                            gap2[a][reach_ + d] = up * up;
-                            gap2[a][reach_ - d] = down * down;
+                        for (int d = -reach_; d <= reach_; ++d) {
+                            const double g =
+                                CellList<D>::gap_to_cell(u, cell_width[a], d, trim_margin);
+                            gap2[a][reach_ + d] = g * g;
                         }
                     }
                     for (int r = 0; r < nr; ++r) {
