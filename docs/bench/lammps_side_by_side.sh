@@ -95,8 +95,9 @@
 #     minimum distance) has a few such pairs, the warmed-up state hardly any;
 #   * temperature: LAMMPS uses d N - d degrees of freedom, pedesis d N for langevin and
 #     d (N - 1) for nve: a relative difference of 1/N in wca2d;
-#   * neighbour lists: skin as stated; rebuilt when any particle has moved skin/2 in
-#     both codes (LAMMPS `neigh_modify every 1 delay 0 check yes`), except lj3d where
+#   * neighbour lists: skin as stated; LAMMPS rebuilds when any particle has moved
+#     skin/2 (`neigh_modify every 1 delay 0 check yes`), pedesis when a pair within the
+#     cutoff could be missing (docs/engines.md, "Neighbour list"), except lj3d where
 #     LAMMPS keeps in.lj's `neigh_modify delay 0 every 20 check no` (rebuild every 20
 #     steps, unchecked) unless LJ_LAMMPS_NEIGH=check; pedesis always checks. LAMMPS uses
 #     a half list (newton on), pedesis too (a coloured sweep); LAMMPS sorts atoms every 1000 steps

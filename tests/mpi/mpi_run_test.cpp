@@ -86,7 +86,9 @@ void MpiRun::expect_processes_follow_serial(int dimension) {
             largest_difference(t.dir / "serial/trajectory.xyz", t.dir / (out + "/trajectory.xyz"));
         EXPECT_LT(d, position_bound) << p << " processes, " << dimension << "D";
         // the log has the serial rows and columns; its values agree to far better than
-        // its 10 digits would show a lost particle (the list rebuilds are shared)
+        // its 10 digits would show a lost particle. The processes rebuild their lists
+        // together when a particle has moved skin/2, one process only when a pair could
+        // be missing (NeighborList::needs_rebuild): no more often.
         const CsvColumns s = csv_columns(t.read("serial/log.csv"));
         const CsvColumns m = csv_columns(t.read(out + "/log.csv"));
         ASSERT_EQ(s.names, m.names);
@@ -94,7 +96,10 @@ void MpiRun::expect_processes_follow_serial(int dimension) {
             ASSERT_EQ(s.cells.at(name).size(), m.cells.at(name).size());
             for (std::size_t k = 0; k < s.cells.at(name).size(); ++k) {
                 const double a = std::stod(s.cells.at(name)[k]), b = std::stod(m.cells.at(name)[k]);
-                EXPECT_NEAR(a, b, 1e-8 * std::max(1.0, std::abs(a))) << name << " row " << k;
+                if (name == "list_rebuilds")
+                    EXPECT_LE(a, b) << "row " << k;
+                else
+                    EXPECT_NEAR(a, b, 1e-8 * std::max(1.0, std::abs(a))) << name << " row " << k;
             }
         }
     }

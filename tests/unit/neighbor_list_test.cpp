@@ -2,9 +2,9 @@
 // (periodic, walled and mixed boxes, axes with 1, 2 and 3 cells, elongated boxes,
 // clusters, positions just outside a periodic box), the colouring of the row sweep
 // never lets two blocks of one colour write the same particle, the rows do not depend
-// on the thread count, needs_rebuild follows the
-// skin/2 rule without mistaking a periodic wrap for motion, buffers are reused, and bad
-// parameters are reported by name.
+// on the thread count, moved_half_skin follows the skin/2 rule without mistaking a
+// periodic wrap for motion (needs_rebuild: neighbor_list_rebuild_brute_force_test), buffers are
+// reused, and bad parameters are reported by name.
 #include "support/soft_builder.hpp"
 
 #include "pedesis/core/rng.hpp"
@@ -416,14 +416,14 @@ TEST(NeighborList, SameRowsWhateverTheThreadCount) {
     check_thread_independence(box3, test::random_positions(box3, 11000, 79, 6), 1.2, 0.3);
 }
 
-TEST(NeighborList, NeedsRebuildAfterSkinHalf) {
+TEST(NeighborList, MovedHalfSkinFollowsTheSkinHalf) {
     const double skin = 0.4, half = 0.5 * skin;
     const Box<2> box(Vec<2>{{20.0, 20.0}}, {true, false});
     auto pos = test::random_positions(box, 400, 9, 6);
     NeighborList<2> nl(box, 2.0, skin);
-    EXPECT_TRUE(nl.needs_rebuild(pos)) << "never built";
+    EXPECT_TRUE(nl.moved_half_skin(pos)) << "never built";
     nl.build(pos);
-    EXPECT_FALSE(nl.needs_rebuild(pos));
+    EXPECT_FALSE(nl.moved_half_skin(pos));
 
     // every particle just under skin/2, in random directions
     auto moved = pos;
@@ -433,27 +433,27 @@ TEST(NeighborList, NeedsRebuildAfterSkinHalf) {
         moved[i] += 0.99 * half * Vec<2>{{std::cos(phi), std::sin(phi)}};
         box.wrap(moved[i]);
     }
-    EXPECT_FALSE(nl.needs_rebuild(moved));
+    EXPECT_FALSE(nl.moved_half_skin(moved));
 
     // one particle just over skin/2, along the periodic and along the walled axis
     for (int a = 0; a < 2; ++a) {
         auto one = moved;
         one[200] = pos[200];
         one[200][a] += (pos[200][a] < 0 ? 1.01 : -1.01) * half;
-        EXPECT_TRUE(nl.needs_rebuild(one)) << "axis " << a;
+        EXPECT_TRUE(nl.moved_half_skin(one)) << "axis " << a;
     }
     auto diag = moved;
     diag[17] = pos[17] + Vec<2>::filled(1.01 * half / std::sqrt(2.0));
     box.wrap(diag[17]);
-    EXPECT_TRUE(nl.needs_rebuild(diag));
+    EXPECT_TRUE(nl.moved_half_skin(diag));
 
     nl.build(diag);
-    EXPECT_FALSE(nl.needs_rebuild(diag)) << "reference positions not updated by build";
-    EXPECT_TRUE(nl.needs_rebuild(pos)) << "reference positions not updated by build";
+    EXPECT_FALSE(nl.moved_half_skin(diag)) << "reference positions not updated by build";
+    EXPECT_TRUE(nl.moved_half_skin(pos)) << "reference positions not updated by build";
 
     auto fewer = diag;
     fewer.pop_back();
-    EXPECT_TRUE(nl.needs_rebuild(fewer)) << "particle count changed";
+    EXPECT_TRUE(nl.moved_half_skin(fewer)) << "particle count changed";
 }
 
 TEST(NeighborList, PeriodicWrapIsNotMotion) {
@@ -473,6 +473,7 @@ TEST(NeighborList, PeriodicWrapIsNotMotion) {
         box.wrap(p[1]);
         ASSERT_LT(p[0][0], 0.0) << "test setup: particle 0 should have wrapped";
         ASSERT_GT(p[1][1], 0.0) << "test setup: particle 1 should have wrapped";
+        EXPECT_FALSE(nl.moved_half_skin(p)) << "wrap of a particle moved by " << step;
         EXPECT_FALSE(nl.needs_rebuild(p)) << "wrap of a particle moved by " << step;
     }
     for (int k = 0; k < 2; ++k) {
@@ -482,7 +483,7 @@ TEST(NeighborList, PeriodicWrapIsNotMotion) {
         else
             p[1][1] -= 1.01 * half;
         box.wrap(p[k]);
-        EXPECT_TRUE(nl.needs_rebuild(p))
+        EXPECT_TRUE(nl.moved_half_skin(p))
             << "particle " << k << " moved over skin/2 across the edge";
     }
 }

@@ -56,7 +56,8 @@ template <int D> void Evolver<D>::ensure_list(bool for_totals) {
     if (domain_) {
         // every process rebuilds when one must: a rebuild moves particles between them
         domain_->local_positions(s_.p.position, local_, skin_);
-        const bool rebuild = domain_->any(nl_->needs_rebuild(local_));
+        // (a pair's partner may be another process's: the rule that needs only one's own)
+        const bool rebuild = domain_->any(nl_->moved_half_skin(local_));
         if (rebuild) {
             domain_->redistribute(s_);
             build_local();

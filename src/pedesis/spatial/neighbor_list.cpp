@@ -603,6 +603,77 @@ template <int D> void NeighborList<D>::reorder(const std::vector<std::uint32_t>&
 
 template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& pos) const {
     if (builds_ == 0 || n_ != pos.size()) return true;
+    const double half2 = 0.25 * skin_ * skin_, skin2 = skin_ * skin_;
+    // the particles in blocks, each marked when one of its particles moved more than
+    // skin/2: the inner loops stay free of branches, and only marked blocks are read again
+    const std::size_t blocks = (n_ + mover_block - 1) / mover_block;
+    mover_blocks_.resize(blocks);
+    const auto sb = static_cast<std::int64_t>(blocks);
+    bool too_far = false;
+    double most2 = 0.0;
+    std::size_t movers = 0;
+#pragma omp parallel for schedule(static) reduction(|| : too_far) reduction(max : most2) \
+    reduction(+ : movers) if (static_cast<std::int64_t>(n_) >= parallel_min)
+    for (std::int64_t b = 0; b < sb; ++b) {
+        const std::size_t first = static_cast<std::size_t>(b) * mover_block;
+        const std::size_t last = std::min(n_, first + mover_block);
+        bool far = false;
+        double m2 = 0.0;
+        std::size_t count = 0;
+        for (std::size_t k = first; k < last; ++k) {
+            const double d2 = norm2(box_.minimum_image(pos[k] - home_[k]));
+            // written as !(<=) so that a NaN position asks for a rebuild (which reports it)
+            far = far || !(d2 <= skin2);
+            m2 = std::max(m2, d2);
+            count += d2 > half2 ? 1 : 0;
+        }
+        too_far = too_far || far;
+        most2 = std::max(most2, m2);
+        movers += count;
+        mover_blocks_[static_cast<std::size_t>(b)] = count > 0 ? 1 : 0;
+    }
+    if (too_far) return true;
+    if (movers == 0) return false;
+    if (movers > checked_movers + n_ / checked_movers_per) return true;
+    // A pair missing from the rows was at least r_list apart at the build; closer than
+    // r_cut now, its two moves add up to more than the skin, so one of them moved more
+    // than skin/2, and the other lay within r_cut + both moves of its build position.
+    const double most = std::sqrt(most2);
+    bool missing = false;
+#pragma omp parallel for schedule(dynamic, 1) reduction(|| : missing) if (movers >= 64)
+    for (std::int64_t b = 0; b < sb; ++b) {
+        if (missing || mover_blocks_[static_cast<std::size_t>(b)] == 0) continue;
+        const std::size_t first = static_cast<std::size_t>(b) * mover_block;
+        for (std::size_t k = first; k < std::min(n_, first + mover_block); ++k) {
+            const double d2 = norm2(box_.minimum_image(pos[k] - home_[k]));
+            if (d2 > half2 && missing_partner(pos, k, r_cut_ + std::sqrt(d2) + most))
+                missing = true;
+        }
+    }
+    return missing;
+}
+
+template <int D>
+bool NeighborList<D>::missing_partner(const std::vector<Vec<D>>& pos, std::size_t i,
+                                      double reach) const {
+    // relative margins far above the rounding of the squared distances: a pair at the
+    // edge of the cutoff counts as close, one at the edge of r_list as possibly missing
+    const double close2 = r_cut_ * r_cut_ * (1.0 + 1e-9);
+    const double listed2 = r_list_ * r_list_ * (1.0 - 1e-9);
+    const int m = cells_.cells_to_reach(reach * (1.0 + 1e-9));
+    bool missing = false;
+    cells_.for_each_cell_within(cells_.cell_index(home_[i]), m, [&](std::int32_t c) {
+        for (std::uint32_t q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
+            const std::uint32_t j = by_cell_[q];
+            if (j == i || !(norm2(box_.minimum_image(pos[i] - pos[j])) < close2)) continue;
+            if (!(norm2(box_.minimum_image(home_[i] - ref_[q])) < listed2)) missing = true;
+        }
+    });
+    return missing;
+}
+
+template <int D> bool NeighborList<D>::moved_half_skin(const std::vector<Vec<D>>& pos) const {
+    if (builds_ == 0 || n_ != pos.size()) return true;
     const double lim2 = 0.25 * skin_ * skin_;
     const auto sn = static_cast<std::int64_t>(n_);
     bool moved = false;
