@@ -6,6 +6,7 @@
 // integrators' noise is the same numbers under every set.
 #include "support/pair_cases.hpp"
 
+#include "pedesis/core/noise_log.hpp"
 #include "pedesis/core/philox_batch.hpp"
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/soft/batch_normals.hpp"
@@ -197,7 +198,7 @@ std::vector<double> reference_normals(int per, std::uint64_t seed, RngStream str
         CounterRng rng(seed, stream, tag[k], step);
         for (int c = 0; c < per; c += 2) {
             const double u1 = rng.uniform(), u2 = rng.uniform();
-            const double r = std::sqrt(-2.0 * std::log(u1));
+            const double r = std::sqrt(-2.0 * noise_log(u1));
             double sn, cs;
             detail::sincos_turns(u2, sn, cs);
             z[static_cast<std::size_t>(k * per + c)] = r * cs;

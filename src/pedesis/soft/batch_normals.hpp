@@ -1,6 +1,7 @@
 #pragma once
 // Standard normals for a batch of particles from the counter-based Philox stream, for
 // the integrators' noise (brownian, brownian_rotation, langevin).
+#include "pedesis/core/noise_log.hpp"
 #include "pedesis/core/philox_batch.hpp"
 #include "pedesis/core/simd_level.hpp"
 
@@ -33,7 +34,7 @@ inline void batch_normals_with(std::uint64_t seed, RngStream stream, const std::
                                u1 + p * B, u2 + p * B);
     double r[B * pairs], sn[B * pairs], cs[B * pairs];
     for (int p = 0; p < pairs; ++p) {
-        for (int k = p * B; k < p * B + m; ++k) r[k] = std::sqrt(-2.0 * std::log(u1[k]));
+        for (int k = p * B; k < p * B + m; ++k) r[k] = std::sqrt(-2.0 * noise_log(u1[k]));
         for (int k = p * B; k < p * B + m; ++k) sincos_turns(u2[k], sn[k], cs[k]);
     }
     for (int k = 0; k < m; ++k)

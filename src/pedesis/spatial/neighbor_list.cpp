@@ -637,7 +637,8 @@ template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& 
     if (movers > checked_movers + n_ / checked_movers_per) return true;
     // A pair missing from the rows was at least r_list apart at the build; closer than
     // r_cut now, its two moves add up to more than the skin, so one of them moved more
-    // than skin/2, and the other lay within r_cut + both moves of its build position.
+    // than skin/2, and the other was at the build within r_cut + its own move (at most
+    // the largest) of where that one is now.
     const double most = std::sqrt(most2);
     bool missing = false;
 #pragma omp parallel for schedule(dynamic, 1) reduction(|| : missing) if (movers >= 64)
@@ -646,7 +647,7 @@ template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& 
         const std::size_t first = static_cast<std::size_t>(b) * mover_block;
         for (std::size_t k = first; k < std::min(n_, first + mover_block); ++k) {
             const double d2 = norm2(box_.minimum_image(pos[k] - home_[k]));
-            if (d2 > half2 && missing_partner(pos, k, r_cut_ + std::sqrt(d2) + most))
+            if (d2 > half2 && missing_partner(pos, k, r_cut_ + most))
                 missing = true;
         }
     }
@@ -662,7 +663,9 @@ bool NeighborList<D>::missing_partner(const std::vector<Vec<D>>& pos, std::size_
     const double listed2 = r_list_ * r_list_ * (1.0 - 1e-9);
     const int m = cells_.cells_to_reach(reach * (1.0 + 1e-9));
     bool missing = false;
-    cells_.for_each_cell_within(cells_.cell_index(home_[i]), m, [&](std::int32_t c) {
+    // (a position off the box is binned as the build bins: wrapped, or clamped to a
+    // wall, which brings it no further from any particle inside)
+    cells_.for_each_cell_within(cells_.cell_index(pos[i]), m, [&](std::int32_t c) {
         for (std::uint32_t q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
             const std::uint32_t j = by_cell_[q];
             if (j == i || !(norm2(box_.minimum_image(pos[i] - pos[j])) < close2)) continue;

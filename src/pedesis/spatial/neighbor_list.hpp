@@ -188,8 +188,8 @@ template <int D> class NeighborList {
     std::vector<std::uint32_t> sweep_;
     std::vector<std::size_t> chunk_start_, colour_chunk_;
     void make_sweep();
-    // needs_rebuild for particle i, which moved more than skin/2: whether a particle of
-    // its build surroundings (within `reach` of its build position) is now closer than
+    // needs_rebuild for particle i, which moved more than skin/2: whether a particle
+    // binned at the build within `reach` of i's present position is now closer than
     // r_cut without having been a list partner.
     bool missing_partner(const std::vector<Vec<D>>& pos, std::size_t i, double reach) const;
     // Particles moved more than skin/2 that needs_rebuild checks one by one: beyond 16
