@@ -122,8 +122,36 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
         for (int a = 0; a < D; ++a)
             in.inner[a] = s.box.periodic(a) ? s.box.hi(a) - nl.image_free_margin()
                                             : std::numeric_limits<double>::infinity();
-        const auto rows = pair_rows_for<D, Pair, Uniform>(simd_level());
+        const SimdLevel level = simd_level();
+        const auto rows = pair_rows_for<D, Pair, Uniform>(level);
+        const bool padded = D == 3 && Uniform && level != SimdLevel::sse2;
+        if (padded) pad(s, in);
         nl.for_each_chunk([&](std::span<const std::uint32_t> chunk) { rows(in, chunk); });
+        if (padded) unpad(s);
+    }
+
+    // The padded copies the 3D SIMD rows work on (pair_rows.hpp, Padded3): the forces
+    // start from the state's and go back to it, so each component receives the same
+    // additions in the same order as without them. (64 bytes per particle, kept; the
+    // two passes cost about 2% of a 3D WCA step, the rows gain about 9%.)
+    void pad(const SoftState<D>& s, PairRowsInput<D, Pair>& in) const {
+        const auto n = static_cast<std::int64_t>(s.size());
+        position4_.resize(s.size());
+        force4_.resize(s.size());
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i)
+            for (int a = 0; a < 4; ++a) {
+                position4_[i].c[a] = a < D ? s.p.position[i][a] : 0.0;
+                force4_[i].c[a] = a < D ? s.force[i][a] : 0.0;
+            }
+        in.position4 = position4_.data();
+        in.force4 = force4_.data();
+    }
+    void unpad(SoftState<D>& s) const {
+        const auto n = static_cast<std::int64_t>(s.size());
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i)
+            for (int a = 0; a < D; ++a) s.force[i][a] = force4_[i].c[a];
     }
 
     std::size_t index(std::size_t a, std::size_t b) const {
@@ -138,6 +166,8 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
     std::string name_;
     std::vector<Pair> pairs_;
     std::size_t species_;
+    // scratch for pad(): kept between evaluations so that a step allocates nothing
+    mutable std::vector<Padded3> position4_, force4_;
 };
 
 } // namespace pedesis
