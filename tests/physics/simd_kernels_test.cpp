@@ -2,8 +2,9 @@
 // forces of the scalar path (sse2, the reference) to 1e-12 of the sum of the pair
 // forces' magnitudes on each particle, in 2D and 3D, for each pair evaluator, with one
 // radius (the SIMD kernel) and with two (the per-pair path), on random systems and on
-// a perfect lattice; and each set is bit-identical on one thread and on two. The
-// integrators' noise is the same numbers under every set.
+// a perfect lattice; each set is bit-identical on one thread and on two, and adds to
+// the forces earlier terms left. The integrators' noise is the same numbers under every
+// set.
 #include "support/pair_cases.hpp"
 
 #include "pedesis/core/noise_log.hpp"
@@ -107,6 +108,32 @@ TEST(SimdKernels, EverySetGivesTheScalarForces3D) {
         [](const auto& s, const auto& pair, double skin, const std::string& what) {
             check_every_set(s, pair, skin, what);
         });
+}
+
+// A pair force adds to what the terms before it left in the forces: the 3D SIMD sets work
+// on padded copies (soft/pair_rows.hpp), which must start from the state's forces and
+// go back to them. Each particle starts with a force of order one, unlike any pair's.
+TEST(SimdKernels, EverySetAddsToTheForcesAlreadyThere) {
+    KernelSetGuard guard;
+    SoftState<3> s = test::pair_case_system<3>(1000, 0.8, false, 7);
+    const LjPair pair{1.0, -1.0, 2.5};
+    std::vector<Vec<3>> before(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i)
+        before[i] = Vec<3>{{1.0 + 0.001 * double(i), -2.0, 0.5 * double(i % 7)}};
+    const std::vector<double> scale = force_scale(s, pair);
+    for (const SimdLevel level : available_simd_levels()) {
+        SCOPED_TRACE(simd_name(level));
+        const std::vector<Vec<3>> alone = forces_with(level, s, pair, 0.3, 1);
+        set_simd_level(level);
+        Evolver<3> e(s, 0.3);
+        e.add_force(std::make_unique<PairForce<3, LjPair>>("pair", pair));
+        s.force = before;
+        e.forces()[0]->add_forces(s, e.neighbor_list());
+        std::size_t bad = 0;
+        for (std::size_t i = 0; i < s.size(); ++i)
+            bad += !(norm(s.force[i] - (before[i] + alone[i])) <= 1e-12 * (scale[i] + 4.0));
+        EXPECT_EQ(bad, 0u) << "particles whose force is not the earlier force plus the pairs'";
+    }
 }
 
 // in.lj's fcc lattice (6^3 cells) and a square lattice of spacing 1 in a box of 20, each
