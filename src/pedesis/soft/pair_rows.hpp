@@ -221,10 +221,11 @@ template <int D, class Pair, bool Padded>
         // where the hardware prefetcher did not look, and the row's first loads waited
         // on it (in.lj 1.03 with this alone, docs/performance.md).
         if (r + 2 < rows.size()) {
-            const std::uint32_t* ahead = nl.begin(rows[r + 2]);
+            const std::uint32_t k = rows[r + 2];
+            const std::uint32_t* ahead = nl.begin(k);
             __builtin_prefetch(ahead);
-            __builtin_prefetch(ahead + 16);
-            __builtin_prefetch(&pos[rows[r + 2]]);
+            if (nl.count(k) > 16) __builtin_prefetch(ahead + 16); // (within the row)
+            __builtin_prefetch(&pos[k]);
         }
         const Vec<D> ri = pos[i];
         const double rsum = 2.0 * in.table[in.species[i]].radius;
