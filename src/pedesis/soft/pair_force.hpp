@@ -124,7 +124,7 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
                                             : std::numeric_limits<double>::infinity();
         const SimdLevel level = simd_level();
         const auto rows = pair_rows_for<D, Pair, Uniform>(level);
-        const bool padded = D == 3 && Uniform && level != SimdLevel::sse2;
+        const bool padded = padded_rows<D> && Uniform && level != SimdLevel::sse2;
         if (padded) pad(s, in);
         nl.for_each_chunk([&](std::span<const std::uint32_t> chunk) { rows(in, chunk); });
         if (padded) unpad(s);

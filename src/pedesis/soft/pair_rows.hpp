@@ -34,6 +34,10 @@ struct alignas(32) Padded3 {
     double c[4];
 };
 
+// Whether the AVX2 and AVX-512 rows of one radius work on the padded copies (the one
+// place the wrappers below and PairForce read it from).
+template <int D> inline constexpr bool padded_rows = D == 3;
+
 // What the rows read and write; one per force evaluation.
 template <int D, class Pair> struct PairRowsInput {
     const Vec<D>* position;
@@ -299,20 +303,16 @@ void pair_rows_sse2(const PairRowsInput<D, Pair>& in, std::span<const std::uint3
 template <int D, class Pair, bool Uniform>
 PEDESIS_SIMD_TARGET_AVX2 void pair_rows_avx2(const PairRowsInput<D, Pair>& in,
                                              std::span<const std::uint32_t> rows) {
-    if constexpr (Uniform && D == 3)
-        pair_rows_lanes<D, Pair, true>(in, rows);
-    else if constexpr (Uniform)
-        pair_rows_lanes<D, Pair, false>(in, rows);
+    if constexpr (Uniform)
+        pair_rows_lanes<D, Pair, padded_rows<D>>(in, rows);
     else
         pair_rows<D, Pair, Uniform>(in, rows);
 }
 template <int D, class Pair, bool Uniform>
 PEDESIS_SIMD_TARGET_AVX512 void pair_rows_avx512(const PairRowsInput<D, Pair>& in,
                                                  std::span<const std::uint32_t> rows) {
-    if constexpr (Uniform && D == 3)
-        pair_rows_lanes<D, Pair, true>(in, rows);
-    else if constexpr (Uniform)
-        pair_rows_lanes<D, Pair, false>(in, rows);
+    if constexpr (Uniform)
+        pair_rows_lanes<D, Pair, padded_rows<D>>(in, rows);
     else
         pair_rows<D, Pair, Uniform>(in, rows);
 }
