@@ -146,6 +146,9 @@ template <int D> class EvolverD final : public EvolverModel {
         // the CLI's in the last bits
         if (!sorted_order_.empty()) evolver_.reorder(sorted_order_);
         sorted_order_.clear();
+        // as `pedesis run` sorts before a fresh run's first step, for the same trajectory
+        if (!started_ && evolver_.sort_interval() > 0) evolver_.sort_storage_at_start();
+        started_ = true;
         TutorialEngine<D> engine(s, evolver_, SoftClock{t0_, step0_, dt_});
         const RunOptions no_directory;
         Simulation<D> sim(engine, Schedule{}, OutputChoice{}, no_directory);
@@ -224,6 +227,7 @@ template <int D> class EvolverD final : public EvolverModel {
     std::uint64_t step0_ = 0;
     std::vector<Vec<D>> seen_;
     std::vector<std::uint32_t> sorted_order_; // re-applied at the next call
+    bool started_ = false;                    // (sorted once, before the first step)
 };
 
 } // namespace

@@ -206,12 +206,14 @@ TEST_F(InterruptStages, TheFirstListBuild) {
 }
 
 // Inside the loop: a list rebuild and a frame of 32,000 particles (every 20 steps, with
-// a skin so small that the list is rebuilt every few steps) end in the clean stop.
+// a skin so small that the list is rebuilt every few steps) end in the clean stop. The
+// set-up builds three lists (the input checked, then two for the sort before the first
+// step): the fourth build is the run's.
 TEST_F(InterruptStages, AListRebuildInTheRun) {
     write("rebuild.toml", fcc_config(4 * 20 * 20 * 20, "[neighbor_list]\nskin = 0.05\n") +
                               quiet_output + "snapshot_every = 20\nlog_every = 20\n");
     const Ended e = signal_in({"run", "rebuild.toml", "--out", "out", "--threads", "1"},
-                              "building the neighbour list", SIGTERM, 3);
+                              "building the neighbour list", SIGTERM, 4);
     expect_clean_stop(e, SIGTERM, "out");
 }
 

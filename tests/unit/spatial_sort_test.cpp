@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
+#include <memory>
 #include <numeric>
 #include <random>
 
@@ -208,6 +210,103 @@ TEST(EvolverSorting, InvisibleToLangevin2D) {
 }
 TEST(EvolverSorting, InvisibleToLangevin3D) {
     check_sorting_invisible<3>([] { return std::make_unique<LangevinIntegrator<3>>(1.0, 1.0, 3); });
+}
+
+} // namespace
+
+namespace {
+
+// narrow: the last axis 3 long, two cells of the list (r_list 1.3), where the list
+// builds from the full stencil and a pair's row is that of its lower storage index
+template <int D>
+SoftState<D> dense_system_with_velocities(std::uint64_t seed, bool narrow = false) {
+    const double L = D == 2 ? 25.0 : 8.0, last = narrow ? 3.0 : L;
+    const auto n = static_cast<std::size_t>((D == 2 ? 800.0 : 600.0) * last / L);
+    auto s = test::random_soft_system<D>(n, L, 0.5, seed);
+    Vec<D> sides = Vec<D>::filled(L);
+    sides[D - 1] = last;
+    std::array<bool, D> periodic;
+    periodic.fill(true);
+    s.box = Box<D>(sides, periodic);
+    for (auto& r : s.p.position) r[D - 1] *= last / L;
+    VelocitySpec spec;
+    for (std::size_t i = 0; i < n; ++i)
+        s.p.velocity[i] = draw_velocity<D>(spec, 1.0, seed + 2, s.p.tag[i]);
+    return s;
+}
+
+template <int D> std::unique_ptr<Evolver<D>> harmonic_evolver(SoftState<D>& s) {
+    auto e = std::make_unique<Evolver<D>>(s, 0.3);
+    e->add_force(std::make_unique<PairForce<D, HarmonicPair>>("harmonic", HarmonicPair{}));
+    e->add_integrator(std::make_unique<VelocityVerletIntegrator<D>>());
+    return e;
+}
+
+template <int D> bool same_bits(const Vec<D>& a, const Vec<D>& b) {
+    return std::memcmp(a.c.data(), b.c.data(), sizeof(double) * D) == 0;
+}
+
+// After a sort the storage follows the force loops' sweep (the rows are visited in
+// storage order), and the order depends on the positions and tags alone: the same
+// configuration handed over shuffled is stored the same way.
+template <int D> void check_storage_follows_the_sweep() {
+    auto s = dense_system_with_velocities<D>(29);
+    auto shuffled = s;
+    std::vector<std::uint32_t> perm(s.size());
+    std::iota(perm.begin(), perm.end(), 0u);
+    std::shuffle(perm.begin(), perm.end(), std::mt19937(5));
+    shuffled.apply_order(perm);
+    auto e = harmonic_evolver(s);
+    auto f = harmonic_evolver(shuffled);
+    e->sort_storage();
+    f->sort_storage();
+    const auto& sweep = e->neighbor_list().sweep_order();
+    ASSERT_EQ(sweep.size(), s.size());
+    std::size_t out_of_place = 0;
+    for (std::size_t i = 0; i < sweep.size(); ++i) out_of_place += sweep[i] != i;
+    EXPECT_EQ(out_of_place, 0u) << "the rows are not visited in storage order";
+    EXPECT_GT(e->neighbor_list().colours(), 1) << "one colour: the test would be empty";
+    EXPECT_TRUE(s.p.tag == shuffled.p.tag) << "the stored order depends on the input's order";
+}
+
+TEST(EvolverSorting, StorageFollowsTheSweep2D) {
+    check_storage_follows_the_sweep<2>();
+}
+TEST(EvolverSorting, StorageFollowsTheSweep3D) {
+    check_storage_follows_the_sweep<3>();
+}
+
+// A checkpoint holds the storage and the positions of the last list build, and a restart
+// builds its list from them. Right after a sort, before any rebuild, the restored run
+// must sum every force in the order the sorting run does, and go on bit for bit.
+template <int D> void check_restart_right_after_a_sort(bool narrow) {
+    auto s = dense_system_with_velocities<D>(31, narrow);
+    auto e = harmonic_evolver(s);
+    e->run(5, 0.005);
+    e->sort_storage();
+    auto copy = s;
+    auto r = harmonic_evolver(copy);
+    r->restore_list(e->list_reference(), e->list_builds());
+    e->compute_forces();
+    r->compute_forces();
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) differ += !same_bits(s.force[i], copy.force[i]);
+    EXPECT_EQ(differ, 0u) << "forces differ in the last bits after the restart's list build";
+    e->run(20, 0.005);
+    r->run(20, 0.005);
+    differ = 0;
+    for (std::size_t i = 0; i < s.size(); ++i)
+        differ += !same_bits(s.p.position[i], copy.p.position[i]);
+    EXPECT_EQ(differ, 0u);
+}
+
+TEST(EvolverSorting, RestartRightAfterASortIsExact2D) {
+    check_restart_right_after_a_sort<2>(false);
+    check_restart_right_after_a_sort<2>(true);
+}
+TEST(EvolverSorting, RestartRightAfterASortIsExact3D) {
+    check_restart_right_after_a_sort<3>(false);
+    check_restart_right_after_a_sort<3>(true);
 }
 
 } // namespace

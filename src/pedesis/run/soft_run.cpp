@@ -143,6 +143,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             evolver_->neighbor_list();
             if (domain_ && !o_.restart)
                 refuse_coincident_particles(state_, evolver_->neighbor_list(), c_.file, o_.comm);
+            // as LAMMPS sorts its atoms at a run's set-up: the first sort_every steps would
+            // otherwise run in the input's order (a restored run keeps the checkpoint's)
+            if (!domain_ && !o_.restart && c_.sort_every > 0) evolver_->sort_storage_at_start();
         }
     }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace pedesis {
 
@@ -122,11 +123,34 @@ template <int D> void Evolver<D>::wrap_all() {
     }
 }
 
-template <int D> void Evolver<D>::sort_particles() {
+template <int D> void Evolver<D>::reorder_storage() {
+    if (domain_ || device_)
+        throw std::logic_error("sort_storage: the domain decomposition or the device sorts");
+    if (!nl_) make_list();
+    // Along the curve first: the order is then a function of the positions and tags
+    // alone, whatever it was before, and the build below reads memory in cell order.
     s_.apply_order(space_filling_order(s_.box, s_.p.position, s_.p.tag, r_list_cut_ + skin_));
-    // the rows hold storage indices: a fresh list, built from the reordered positions
     nl_->build(s_.p.position);
+    // Then in the order the force loops visit the rows (colour, block, cell): a block's
+    // rows, particles and their forces lie together in memory instead of in pieces of the
+    // curve. Once the state outgrows the caches that is what the pair loop waits on
+    // (2D ABP at 10^6: 1.14x the rate, docs/performance.md).
+    const std::vector<std::uint32_t> order = nl_->sweep_order();
+    s_.apply_order(order);
+    // A fresh list from the final storage, as a restart builds it from the checkpoint:
+    // renumbering the rows instead would sum a particle's forces in another order where
+    // a pair's row is that of its lower storage index (the full stencil of narrow boxes).
+    nl_->build(s_.p.position);
+}
+
+template <int D> void Evolver<D>::sort_storage() {
+    reorder_storage();
     ++builds_;
+}
+
+template <int D> void Evolver<D>::sort_storage_at_start() {
+    reorder_storage();
+    builds_ = std::max<std::uint64_t>(builds_, 1);
 }
 
 template <int D> bool Evolver<D>::in_tag_order() const {
@@ -192,7 +216,7 @@ template <int D> void Evolver<D>::evolve(double dt) {
         return;
     }
     if (!nl_) ensure_list();
-    if (sort_interval_ > 0 && s_.step > 0 && s_.step % sort_interval_ == 0) sort_particles();
+    if (sort_interval_ > 0 && s_.step > 0 && s_.step % sort_interval_ == 0) sort_storage();
     if (!forces_current_ && needs_initial_forces()) compute_forces();
     // A step longer than the skin is a blow-up (tunnelling through neighbours), as in
     // the tutorial's guidance on choosing the pad; with no skin, the cutoff is the scale.

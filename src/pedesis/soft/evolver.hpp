@@ -50,9 +50,17 @@ template <int D> class Evolver {
         for (std::uint64_t k = 0; k < steps; ++k) evolve(dt);
     }
 
-    // Every `steps` steps (0: never) the storage is reordered along a space-filling curve
-    // for cache locality; outputs, which are in tag order, do not change.
+    // Every `steps` steps (0: never) the storage is reordered for cache locality (see
+    // sort_storage); outputs, which are in tag order, do not change.
     void set_sort_interval(std::uint64_t steps) { sort_interval_ = steps; }
+    // That reordering now, and a fresh list (counted as a build): along the curve, then in
+    // the order the force loops visit the rows. Not under a domain decomposition, whose
+    // redistribution sorts each share, nor on a device, which sorts its own copy.
+    void sort_storage();
+    // The same before a fresh run's first step (as LAMMPS sorts at a run's set-up): its
+    // list is the run's first, counted once, whether or not one was built to check the
+    // input.
+    void sort_storage_at_start();
     std::uint64_t sort_interval() const { return sort_interval_; }
 
     // Puts the storage back in tag order (index i holds tag i), as the Python module's
@@ -104,8 +112,8 @@ template <int D> class Evolver {
     // (`error` non-empty), else returns whether any asks to stop (`stop`).
     bool agree(const std::string& error, bool stop);
     void make_list();
+    void reorder_storage();
     void wrap_all();
-    void sort_particles();
 
     SoftState<D>& s_;
     double skin_;

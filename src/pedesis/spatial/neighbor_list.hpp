@@ -111,6 +111,10 @@ template <int D> class NeighborList {
     std::array<std::size_t, 2> chunks_of_colour(int k) const {
         return {colour_chunk_[k], colour_chunk_[k + 1]};
     }
+    // Every particle once, in the order for_each_chunk visits the rows.
+    const std::vector<std::uint32_t>& sweep_order() const {
+        return sweep_;
+    }
     std::span<const std::uint32_t> chunk(std::size_t c) const {
         return {sweep_.data() + chunk_start_[c], sweep_.data() + chunk_start_[c + 1]};
     }

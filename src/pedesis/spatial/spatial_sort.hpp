@@ -63,7 +63,8 @@ std::vector<std::uint32_t> space_filling_order(const Box<D>& box, const std::vec
         std::array<std::uint32_t, D> c;
         for (int a = 0; a < D; ++a) {
             const double x = (pos[i][a] + 0.5 * box.length(a)) * scale[a];
-            c[a] = static_cast<std::uint32_t>(std::clamp(x, 0.0, max_cell));
+            // (a NaN goes to cell 0: the order stays defined for any input)
+            c[a] = static_cast<std::uint32_t>(x > 0.0 ? std::min(x, max_cell) : 0.0);
         }
         std::uint64_t k;
         if constexpr (D == 2)
