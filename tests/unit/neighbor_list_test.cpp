@@ -359,20 +359,24 @@ void check_colours_write_apart(const Box<D>& box, const std::vector<Vec<D>>& pos
 }
 
 TEST(NeighborList, WideBlocksOfOneColourWriteApart) {
-    // 2D, r_list 3.1: 161 cells along, rounded to 160 (cells of 3.125) for blocks of 8
+    // 2D, r_list 3.1: 161 cells along, rounded to 160 (cells of 3.125) for blocks of 10
+    // (8 blocks of each colour along an axis at most)
     const Box<2> big(Vec<2>{{500.0, 500.0}}, {true, true});
-    check_colours_write_apart(big, test::random_positions(big, 99000, 91, 6), 2.1, 1.0, 8);
+    check_colours_write_apart(big, test::random_positions(big, 99000, 91, 6), 2.1, 1.0, 10);
     std::vector<Vec<2>> lattice; // spacing 1.5625: a point on every cell face
     for (int x = 0; x < 320; ++x)
         for (int y = 0; y < 320; ++y)
             lattice.push_back(Vec<2>{{-250.0 + 1.5625 * x, -250.0 + 1.5625 * y}});
-    check_colours_write_apart(big, lattice, 2.1, 1.0, 8);
+    check_colours_write_apart(big, lattice, 2.1, 1.0, 10);
     // walls: no rounding, and the last block is narrower
     const Box<2> walled(Vec<2>{{500.0, 400.0}}, {false, false});
     check_colours_write_apart(walled, test::random_positions(walled, 80000, 92, 6), 2.1, 1.0, 8);
     // 3D, r_list 1.5: 49 cells, 48 for blocks of 3
     const Box<3> cube(Vec<3>{{75.0, 75.0, 75.0}}, {true, true, true});
     check_colours_write_apart(cube, test::random_positions(cube, 100000, 93, 6), 1.2, 0.3, 3);
+    // the widest blocks: 516 cells along, 512 for blocks of 32
+    const Box<2> huge(Vec<2>{{1600.0, 1600.0}}, {true, true});
+    check_colours_write_apart(huge, test::random_positions(huge, 200000, 95, 6), 2.1, 1.0, 32);
     // a small system keeps blocks of two cells
     const Box<2> small(Vec<2>{{60.0, 60.0}}, {true, true});
     check_colours_write_apart(small, test::random_positions(small, 1400, 94, 6), 2.1, 1.0, 2);

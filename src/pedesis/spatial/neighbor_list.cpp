@@ -62,12 +62,14 @@ template <int D> int NeighborList<D>::choose_block_width(int k, int reach) const
     // In a large system the colour sweep is what brings particles through the caches:
     // each colour visits its blocks and the cells round them, so with blocks of w cells
     // a colour pass touches ((w + 1) / 2w)^D of the box at reach 1: 2.25 box-sweeps per
-    // step in 2D with w = 2 against 1.27 with w = 8. Once the state outgrows the caches
-    // (2D ABP at 10^6) that is the likely reason the pair loop was a third slower per
-    // particle than at 36,000 (wider blocks: 1.20x, docs/performance.md). Wider blocks are taken
-    // only where every axis keeps 8 blocks of each colour or more (threads stay balanced; small
-    // systems keep the narrowest width) and the periodic multiple widens the cells by 5% at most (a
-    // list build scans more).
+    // step in 2D with w = 2 against 1.27 with w = 8 and 1.06 with w = 32. Once the state
+    // outgrows the caches (2D ABP at 10^6) that is the likely reason the pair loop was a
+    // third slower per particle than at 36,000 (w = 8: 1.20x; stored in sweep order,
+    // Evolver::sort_storage, each block is one run of memory and its forward halo is
+    // what misses: w = 32 another 1.19x, docs/performance.md). Wider blocks are taken
+    // only where every axis keeps 8 blocks of each colour or more (threads stay balanced;
+    // small systems keep the narrowest width) and the periodic multiple widens the cells
+    // by 5% at most (a list build scans more).
     std::array<int, D> along{};
     int fewest = CellList<D>::max_cells_along;
     for (int a = 0; a < D; ++a) {
@@ -647,8 +649,7 @@ template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& 
         const std::size_t first = static_cast<std::size_t>(b) * mover_block;
         for (std::size_t k = first; k < std::min(n_, first + mover_block); ++k) {
             const double d2 = norm2(box_.minimum_image(pos[k] - home_[k]));
-            if (d2 > half2 && missing_partner(pos, k, r_cut_ + most))
-                missing = true;
+            if (d2 > half2 && missing_partner(pos, k, r_cut_ + most)) missing = true;
         }
     }
     return missing;

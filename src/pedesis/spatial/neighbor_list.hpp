@@ -182,7 +182,7 @@ template <int D> class NeighborList {
     void set_grid(int reach);
     // The colour blocks' width in cells for k colours per axis (set_grid).
     int choose_block_width(int k, int reach) const;
-    static constexpr int max_block_width = 8;
+    static constexpr int max_block_width = 32;
     int block_width_ = 2;
     // Each build: the particles in that order (sweep_), cut at block boundaries into
     // chunks of about sweep_chunk particles: chunk c is sweep_[chunk_start_[c] ..
