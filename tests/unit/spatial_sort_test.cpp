@@ -161,6 +161,37 @@ TEST(SpaceFillingOrder, Morton3DRunsFillCubes) {
     }
 }
 
+// Dense harmonic particles with Maxwell-Boltzmann velocities (T = 1). narrow: the last axis 3 long,
+// two cells of the list (r_list 1.3), where the list builds from the full stencil and a pair's row
+// is that of its lower storage index
+template <int D>
+SoftState<D> dense_system_with_velocities(std::uint64_t seed, bool narrow = false) {
+    const double L = D == 2 ? 25.0 : 8.0, last = narrow ? 3.0 : L;
+    const auto n = static_cast<std::size_t>((D == 2 ? 800.0 : 600.0) * last / L);
+    auto s = test::random_soft_system<D>(n, L, 0.5, seed);
+    Vec<D> sides = Vec<D>::filled(L);
+    sides[D - 1] = last;
+    std::array<bool, D> periodic;
+    periodic.fill(true);
+    s.box = Box<D>(sides, periodic);
+    for (auto& r : s.p.position) r[D - 1] *= last / L;
+    VelocitySpec spec;
+    for (std::size_t i = 0; i < n; ++i)
+        s.p.velocity[i] = draw_velocity<D>(spec, 1.0, seed + 2, s.p.tag[i]);
+    return s;
+}
+
+// Harmonic particles (skin 0.3) moved by `integrator` (velocity Verlet if none).
+template <int D>
+std::unique_ptr<Evolver<D>> harmonic_evolver(SoftState<D>& s,
+                                             std::unique_ptr<Integrator<D>> integrator = nullptr) {
+    auto e = std::make_unique<Evolver<D>>(s, 0.3);
+    e->add_force(std::make_unique<PairForce<D, HarmonicPair>>("harmonic", HarmonicPair{}));
+    e->add_integrator(integrator ? std::move(integrator)
+                                 : std::make_unique<VelocityVerletIntegrator<D>>());
+    return e;
+}
+
 // Sorting every 10 steps inside the evolver is invisible. Compared in tag order with
 // an unsorted run after 200 steps of dense harmonic particles: sorting changes only the
 // order in which each particle sums its neighbours' forces (rounding, 1e-16), which the
@@ -169,19 +200,13 @@ TEST(SpaceFillingOrder, Morton3DRunsFillCubes) {
 // (noiseless) and Langevin, whose noise is keyed by tag and so must follow the particles
 // through every reordering.
 template <int D, class Make> void check_sorting_invisible(Make make_integrator) {
-    const std::size_t n = D == 2 ? 800 : 600;
-    const double L = D == 2 ? 25.0 : 8.0;
-    auto plain = test::random_soft_system<D>(n, L, 0.5, 17);
-    VelocitySpec spec;
-    for (std::size_t i = 0; i < n; ++i)
-        plain.p.velocity[i] = draw_velocity<D>(spec, 1.0, 19, plain.p.tag[i]);
+    auto plain = dense_system_with_velocities<D>(17);
+    const std::size_t n = plain.size();
     auto sorted = plain;
     auto run = [&](SoftState<D>& s, std::uint64_t interval) {
-        Evolver<D> e(s, 0.3);
-        e.add_force(std::make_unique<PairForce<D, HarmonicPair>>("harmonic", HarmonicPair{}));
-        e.add_integrator(make_integrator());
-        e.set_sort_interval(interval);
-        e.run(200, 0.005);
+        auto e = harmonic_evolver<D>(s, make_integrator());
+        e->set_sort_interval(interval);
+        e->run(200, 0.005);
     };
     run(plain, 0);
     run(sorted, 10);
@@ -210,36 +235,6 @@ TEST(EvolverSorting, InvisibleToLangevin2D) {
 }
 TEST(EvolverSorting, InvisibleToLangevin3D) {
     check_sorting_invisible<3>([] { return std::make_unique<LangevinIntegrator<3>>(1.0, 1.0, 3); });
-}
-
-} // namespace
-
-namespace {
-
-// narrow: the last axis 3 long, two cells of the list (r_list 1.3), where the list
-// builds from the full stencil and a pair's row is that of its lower storage index
-template <int D>
-SoftState<D> dense_system_with_velocities(std::uint64_t seed, bool narrow = false) {
-    const double L = D == 2 ? 25.0 : 8.0, last = narrow ? 3.0 : L;
-    const auto n = static_cast<std::size_t>((D == 2 ? 800.0 : 600.0) * last / L);
-    auto s = test::random_soft_system<D>(n, L, 0.5, seed);
-    Vec<D> sides = Vec<D>::filled(L);
-    sides[D - 1] = last;
-    std::array<bool, D> periodic;
-    periodic.fill(true);
-    s.box = Box<D>(sides, periodic);
-    for (auto& r : s.p.position) r[D - 1] *= last / L;
-    VelocitySpec spec;
-    for (std::size_t i = 0; i < n; ++i)
-        s.p.velocity[i] = draw_velocity<D>(spec, 1.0, seed + 2, s.p.tag[i]);
-    return s;
-}
-
-template <int D> std::unique_ptr<Evolver<D>> harmonic_evolver(SoftState<D>& s) {
-    auto e = std::make_unique<Evolver<D>>(s, 0.3);
-    e->add_force(std::make_unique<PairForce<D, HarmonicPair>>("harmonic", HarmonicPair{}));
-    e->add_integrator(std::make_unique<VelocityVerletIntegrator<D>>());
-    return e;
 }
 
 template <int D> bool same_bits(const Vec<D>& a, const Vec<D>& b) {
