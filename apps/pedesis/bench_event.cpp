@@ -1,6 +1,7 @@
 #include "bench_event.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/huge_pages.hpp"
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/setup/lattice.hpp"
@@ -157,6 +158,9 @@ template <int D> void run_bench(const BenchEventOptions& o) {
     fmt::print("collisions_per_second: {:.0f}\n", collisions / seconds);
     fmt::print("bytes_per_particle: {:.1f}\n",
                static_cast<double>(engine->memory_bytes()) / static_cast<double>(o.n));
+    // how much of it the kernel backs with 2 MiB pages (core/huge_pages.hpp)
+    fmt::print("huge_page_bytes_per_particle: {:.1f}\n",
+               static_cast<double>(huge_page_bytes()) / static_cast<double>(o.n));
     // the whole process's peak, setup included (ru_maxrss is in KiB on Linux)
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);

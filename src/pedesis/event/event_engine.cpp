@@ -1,6 +1,7 @@
 #include "pedesis/event/event_engine.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/huge_pages.hpp"
 #include "pedesis/core/interrupt.hpp"
 #include "pedesis/core/particle_checks.hpp"
 #include "pedesis/core/stage.hpp"
@@ -244,8 +245,7 @@ template <int D> void EventEngine<D>::growth_step(bool full) {
     resum_kinetic_energy();
 
     if (!full && growth_.growing) {
-        for (std::uint32_t i = 0; i < p_.size(); ++i) predict(i);
-        queue_.build(ev_time_);
+        queue_.build_from(p_.size(), [&](std::uint32_t i) { return predict(i); });
         return;
     }
     for (std::size_t s = 0; s < radius_.size(); ++s) {
@@ -372,12 +372,24 @@ template <int D> void EventEngine<D>::build_all_lists() {
 
 template <int D> void EventEngine<D>::setup() {
     const auto n = static_cast<std::uint32_t>(p_.size());
-    ev_time_.assign(n, never);
-    ev_partner_.assign(n, no_event);
-    ev_count_.assign(n, 0);
-    for (std::uint32_t i = 0; i < n; ++i) predict(i);
-    queue_.build(ev_time_);
+    ev_.assign(n, {no_event, 0});
+    queue_.build_from(n, [&](std::uint32_t i) { return predict(i); });
     if (growth_.growing) schedule_growth_step();
+    use_huge_pages();
+}
+
+template <int D> void EventEngine<D>::use_huge_pages() const {
+    back_with_huge_pages(p_.position);
+    back_with_huge_pages(p_.velocity);
+    back_with_huge_pages(p_.species);
+    back_with_huge_pages(t_);
+    back_with_huge_pages(centre_);
+    back_with_huge_pages(count_);
+    back_with_huge_pages(ev_);
+    back_with_huge_pages(n_nbr_);
+    back_with_huge_pages(nbr_);
+    queue_.use_huge_pages();
+    for (const auto& grid : grids_) grid.use_huge_pages();
 }
 
 template <int D> void EventEngine<D>::add_neighbor(std::uint32_t i, std::uint32_t j) {
@@ -407,6 +419,7 @@ template <int D> void EventEngine<D>::grow_lists() {
         std::copy_n(&nbr_[i * stride_], n_nbr_[i], &grown[i * new_stride]);
     nbr_ = std::move(grown);
     stride_ = new_stride;
+    back_with_huge_pages(nbr_);
 }
 
 // A row is read first by the prediction that follows every event, and missed the caches
@@ -425,16 +438,13 @@ template <int D> void EventEngine<D>::advance(std::uint32_t i) {
     }
 }
 
-template <int D> void EventEngine<D>::predict(std::uint32_t i) {
-    if (growth_.growing)
-        predict_with<true>(i);
-    else
-        predict_with<false>(i);
+template <int D> double EventEngine<D>::predict(std::uint32_t i) {
+    return growth_.growing ? predict_with<true>(i) : predict_with<false>(i);
 }
 
 // The earliest event of particle i. While the radii grow (Growing), contact and wall
 // distances move; the other branch is the plain hot loop.
-template <int D> template <bool Growing> void EventEngine<D>::predict_with(std::uint32_t i) {
+template <int D> template <bool Growing> double EventEngine<D>::predict_with(std::uint32_t i) {
     const Vec<D> vi = p_.velocity[i];
     const Vec<D> xi = p_.position[i] + vi * (now_ - t_[i]);
     const std::size_t si = p_.species[i];
@@ -487,9 +497,8 @@ template <int D> template <bool Growing> void EventEngine<D>::predict_with(std::
         }
     }
     if (best == never) partner = no_event;
-    ev_time_[i] = now_ + best;
-    ev_partner_[i] = partner;
-    ev_count_[i] = partner >= 0 ? count_[partner] : 0;
+    ev_[i] = {partner, partner >= 0 ? count_[partner] : 0};
+    return now_ + best;
 }
 
 // predict_with's scan of the list with the batch kernel of the AVX2 and AVX-512 sets.
@@ -713,15 +722,14 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
             stalled_events_ = 0;
         }
         now_ = te;
-        const std::int32_t partner = ev_partner_[i];
+        const std::int32_t partner = ev_[i].partner;
         prefetch_list(i);
         if (partner >= 0) {
             const auto j = static_cast<std::uint32_t>(partner);
             prefetch_list(j);
-            if (count_[j] != ev_count_[i]) {
+            if (count_[j] != ev_[i].count) {
                 ++counters_.stale_events;
-                predict(i);
-                queue_.update(i, ev_time_[i]);
+                queue_.update(i, predict(i));
                 continue;
             }
             process_pair(i, j);
@@ -729,10 +737,8 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
                 check_particle_overlap(i, 1e-9);
                 check_particle_overlap(j, 1e-9);
             }
-            predict(i);
-            predict(j);
-            queue_.update(i, ev_time_[i]);
-            queue_.update(j, ev_time_[j]);
+            queue_.update(i, predict(i));
+            queue_.update(j, predict(j));
             if (growth_.growing && growth_due()) {
                 growth_step(false);
                 if (!growth_.growing) return StopReason::grown;
@@ -745,8 +751,7 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
             rebuild_list(i);
         else
             process_wall(i, partner);
-        predict(i);
-        queue_.update(i, ev_time_[i]);
+        queue_.update(i, predict(i));
         if (growth_.growing && partner != shell_event && growth_due()) {
             growth_step(false);
             if (!growth_.growing) return StopReason::grown;
@@ -830,9 +835,8 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
 template <int D> std::size_t EventEngine<D>::memory_bytes() const {
     auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
     return bytes(p_.position) + bytes(p_.velocity) + bytes(p_.tag) + bytes(p_.species) + bytes(t_) +
-           bytes(centre_) + bytes(count_) + bytes(ev_time_) + bytes(ev_partner_) +
-           bytes(ev_count_) + bytes(last_collision_) + bytes(n_nbr_) + bytes(nbr_) +
-           grids_memory() + queue_.memory_bytes();
+           bytes(centre_) + bytes(count_) + bytes(ev_) + bytes(last_collision_) + bytes(n_nbr_) +
+           bytes(nbr_) + grids_memory() + queue_.memory_bytes();
 }
 
 namespace {
@@ -873,9 +877,18 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, t_);
     put(out, centre_);
     put(out, count_);
-    put(out, ev_time_);
-    put(out, ev_partner_);
-    put(out, ev_count_);
+    // the layout of versions with three arrays (the file does not change with the records)
+    std::vector<double> times(p_.size());
+    std::vector<std::int32_t> partners(p_.size());
+    std::vector<std::uint32_t> counts(p_.size());
+    for (std::uint32_t i = 0; i < p_.size(); ++i) {
+        times[i] = queue_.time(i);
+        partners[i] = ev_[i].partner;
+        counts[i] = ev_[i].count;
+    }
+    put(out, times);
+    put(out, partners);
+    put(out, counts);
     put(out, last_collision_);
     put(out, stride_);
     put(out, n_nbr_);
@@ -938,18 +951,21 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     get(in, e.t_);
     get(in, e.centre_);
     get(in, e.count_);
-    get(in, e.ev_time_);
-    get(in, e.ev_partner_);
-    get(in, e.ev_count_);
+    std::vector<double> times;
+    std::vector<std::int32_t> partners;
+    std::vector<std::uint32_t> counts;
+    get(in, times);
+    get(in, partners);
+    get(in, counts);
     get(in, e.last_collision_);
     get(in, e.stride_);
     get(in, e.n_nbr_);
     get(in, e.nbr_);
     const std::size_t n = e.p_.position.size();
     if (n == 0 || e.p_.velocity.size() != n || e.p_.tag.size() != n || e.p_.species.size() != n ||
-        e.t_.size() != n || e.centre_.size() != n || e.count_.size() != n ||
-        e.ev_time_.size() != n || e.ev_partner_.size() != n || e.ev_count_.size() != n ||
-        e.n_nbr_.size() != n || e.nbr_.size() != n * e.stride_)
+        e.t_.size() != n || e.centre_.size() != n || e.count_.size() != n || times.size() != n ||
+        partners.size() != n || counts.size() != n || e.n_nbr_.size() != n ||
+        e.nbr_.size() != n * e.stride_)
         throw InputError("checkpoint: inconsistent array sizes (corrupt file)");
     if (params.tc > 0.0 && e.last_collision_.size() != n) e.last_collision_.assign(n, -never);
     for (auto s : e.p_.species)
@@ -962,13 +978,15 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
                 throw InputError("checkpoint: corrupt neighbour list");
         // a particle, no event, the shell or one of the 2 D walls (a code below them would
         // index a wall that does not exist)
-        if (e.ev_partner_[i] < wall_event_base - (2 * D - 1) ||
-            e.ev_partner_[i] >= static_cast<std::int32_t>(n))
+        if (partners[i] < wall_event_base - (2 * D - 1) ||
+            partners[i] >= static_cast<std::int32_t>(n))
             throw InputError("checkpoint: corrupt event");
     }
     e.make_grids();
     for (auto& grid : e.grids_) grid.load([&](auto& v) { get(in, v); });
-    e.queue_.build(e.ev_time_);
+    e.ev_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) e.ev_[i] = {partners[i], counts[i]};
+    e.queue_.build(times);
     return e;
 }
 

@@ -117,12 +117,16 @@ template <int D> class EventEngine {
     static constexpr std::int32_t wall_event_base = -3; // -3 - (2 axis + side)
 
     void setup();
+    // The per-particle arrays on huge pages (core/huge_pages.hpp): at 10^6 particles an
+    // event touches a dozen of them at random places.
+    void use_huge_pages() const;
     double default_skin(double mean_diameter) const;
     void build_all_lists();
     void add_neighbor(std::uint32_t i, std::uint32_t j);
     void remove_neighbor(std::uint32_t i, std::uint32_t j);
     void grow_lists();
-    void predict(std::uint32_t i);
+    // The time of i's next event (its partner and the partner's count go to ev_[i]).
+    double predict(std::uint32_t i);
     void advance(std::uint32_t i);
     void prefetch_list(std::uint32_t i) const;
     void process_pair(std::uint32_t i, std::uint32_t j);
@@ -157,7 +161,7 @@ template <int D> class EventEngine {
     bool growth_due() const;
     bool pressure_window_full() const;
     void schedule_growth_step();
-    template <bool Growing> void predict_with(std::uint32_t i);
+    template <bool Growing> double predict_with(std::uint32_t i);
     void earliest_listed_lanes(std::uint32_t i, const Vec<D>& xi, const Vec<D>& vi, double ri,
                                double& best, std::int32_t& partner);
 
@@ -186,9 +190,14 @@ template <int D> class EventEngine {
     std::vector<double> t_;            // time of r_i
     std::vector<Vec<D>> centre_;       // neighbour-list centre
     std::vector<std::uint32_t> count_; // collision counter
-    std::vector<double> ev_time_;
-    std::vector<std::int32_t> ev_partner_;
-    std::vector<std::uint32_t> ev_count_;
+    // Each particle's pending event: its time is the calendar's (queue_.time), and the
+    // partner's collision count when it was predicted tells a stale event. One record, so
+    // that an event's check reads one cache line of it.
+    struct PendingEvent {
+        std::int32_t partner;
+        std::uint32_t count;
+    };
+    std::vector<PendingEvent> ev_;
     std::vector<double> last_collision_; // only with the TC model
 
     std::uint32_t stride_ = 0; // neighbour slots per particle

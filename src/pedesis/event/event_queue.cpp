@@ -1,20 +1,15 @@
 #include "pedesis/event/event_queue.hpp"
 
+#include "pedesis/core/huge_pages.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <stdexcept>
 
 namespace pedesis {
 
-void EventQueue::build(const std::vector<double>& times) {
-    const auto n = static_cast<std::uint32_t>(times.size());
-    time_ = times;
-    slots_ = std::bit_ceil(std::max<std::uint32_t>(n, 16));
-    where_.assign(n, none);
-    next_.assign(n, none);
-    prev_.assign(n, none);
-    heap_pos_.assign(n, none);
-    rebuild();
+void EventQueue::use_huge_pages() const {
+    back_with_huge_pages(node_);
 }
 
 // Chooses the width from the pending times so that a bucket holds about
@@ -25,27 +20,27 @@ void EventQueue::rebuild() {
     listed_ = 0;
     choose_width();
     double first = std::numeric_limits<double>::infinity();
-    for (double t : time_) first = std::min(first, t);
+    for (const Node& e : node_) first = std::min(first, e.t);
     current_ = std::isfinite(first) ? bucket_of(first) : 0;
     if (current_ == std::numeric_limits<std::int64_t>::max()) current_ = 0;
-    for (std::uint32_t i = 0; i < time_.size(); ++i) {
-        where_[i] = none;
-        insert(i, time_[i]);
+    for (std::uint32_t i = 0; i < node_.size(); ++i) {
+        node_[i].where = none;
+        insert(i, node_[i].t);
     }
     updates_ = buckets_advanced_ = 0;
-    retune_after_ = std::max<std::uint64_t>(4 * time_.size(), 1024);
+    retune_after_ = std::max<std::uint64_t>(4 * node_.size(), 1024);
 }
 
 // The events due within the next T are about N T / mean_wait (each particle's next event
 // comes on average mean_wait after the earliest one): w = target * mean_wait / N.
 void EventQueue::choose_width() {
     double first = std::numeric_limits<double>::infinity();
-    for (double t : time_) first = std::min(first, t);
+    for (const Node& e : node_) first = std::min(first, e.t);
     double sum = 0.0;
     std::size_t finite = 0;
-    for (double t : time_)
-        if (std::isfinite(t)) {
-            sum += t - first;
+    for (const Node& e : node_)
+        if (std::isfinite(e.t)) {
+            sum += e.t - first;
             ++finite;
         }
     double w = finite > 1 ? target_per_bucket * (sum / static_cast<double>(finite)) /
@@ -71,10 +66,10 @@ void EventQueue::maybe_retune() {
 }
 
 void EventQueue::insert(std::uint32_t who, double t) {
-    time_[who] = t;
+    node_[who].t = t;
     if (!std::isfinite(t)) {
         push_list(slots_ + 1, who);
-        where_[who] = in_never;
+        node_[who].where = in_never;
         return;
     }
     const std::int64_t k = bucket_of(t);
@@ -83,41 +78,42 @@ void EventQueue::insert(std::uint32_t who, double t) {
     } else if (k - current_ < static_cast<std::int64_t>(slots_)) {
         const auto slot = static_cast<std::uint32_t>(k & (slots_ - 1));
         push_list(slot, who);
-        where_[who] = slot;
+        node_[who].where = slot;
         ++listed_;
     } else {
         push_list(slots_, who);
-        where_[who] = in_overflow;
+        node_[who].where = in_overflow;
     }
 }
 
 void EventQueue::remove(std::uint32_t who) {
-    const std::uint32_t w = where_[who];
+    const std::uint32_t w = node_[who].where;
     if (w == in_heap) {
         heap_erase(who);
     } else if (w != none) {
         unlink(who);
         if (w < slots_) --listed_;
     }
-    where_[who] = none;
+    node_[who].where = none;
 }
 
 void EventQueue::push_list(std::uint32_t list, std::uint32_t who) {
     const std::uint32_t head = list_head_[list];
-    next_[who] = head;
-    prev_[who] = none;
-    if (head != none) prev_[head] = who;
+    node_[who].next = head;
+    node_[who].prev = none;
+    if (head != none) node_[head].prev = who;
     list_head_[list] = who;
 }
 
 void EventQueue::unlink(std::uint32_t who) {
-    const std::uint32_t w = where_[who];
-    const std::uint32_t list = w < slots_ ? w : (w == in_overflow ? slots_ : slots_ + 1);
-    if (prev_[who] != none)
-        next_[prev_[who]] = next_[who];
+    const Node& e = node_[who];
+    const std::uint32_t list =
+        e.where < slots_ ? e.where : (e.where == in_overflow ? slots_ : slots_ + 1);
+    if (e.prev != none)
+        node_[e.prev].next = e.next;
     else
-        list_head_[list] = next_[who];
-    if (next_[who] != none) prev_[next_[who]] = prev_[who];
+        list_head_[list] = e.next;
+    if (e.next != none) node_[e.next].prev = e.prev;
 }
 
 // Moves to the next bucket that holds an event and sorts it into the heap.
@@ -143,9 +139,9 @@ void EventQueue::advance() {
         std::uint32_t who = list_head_[slot];
         list_head_[slot] = none;
         while (who != none) {
-            const std::uint32_t after = next_[who];
+            const std::uint32_t after = node_[who].next;
             --listed_;
-            heap_push(who, time_[who]);
+            heap_push(who, node_[who].t);
             who = after;
         }
     }
@@ -157,23 +153,23 @@ void EventQueue::redistribute_overflow() {
     std::uint32_t who = list_head_[slots_];
     list_head_[slots_] = none;
     while (who != none) {
-        const std::uint32_t after = next_[who];
-        insert(who, time_[who]);
+        const std::uint32_t after = node_[who].next;
+        insert(who, node_[who].t);
         who = after;
     }
 }
 
 void EventQueue::heap_push(std::uint32_t who, double t) {
-    where_[who] = in_heap;
+    node_[who].where = in_heap;
     heap_.push_back({t, who});
     sift_up(static_cast<std::uint32_t>(heap_.size() - 1));
 }
 
 void EventQueue::heap_erase(std::uint32_t who) {
-    const std::uint32_t k = heap_pos_[who];
+    const std::uint32_t k = node_[who].heap_pos;
     const Entry last = heap_.back();
     heap_.pop_back();
-    heap_pos_[who] = none;
+    node_[who].heap_pos = none;
     if (k == heap_.size()) return;
     place(k, last);
     if (k > 0 && before(last, heap_[(k - 1) / 2]))
@@ -209,8 +205,7 @@ void EventQueue::sift_down(std::uint32_t k) {
 
 std::size_t EventQueue::memory_bytes() const {
     auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-    return bytes(time_) + bytes(where_) + bytes(next_) + bytes(prev_) + bytes(heap_pos_) +
-           bytes(list_head_) + bytes(heap_);
+    return bytes(node_) + bytes(list_head_) + bytes(heap_);
 }
 
 } // namespace pedesis

@@ -16,6 +16,7 @@
 // cooling gas slows down, a compressed one speeds up). Processing order never depends on
 // w, so re-tuning changes nothing in a trajectory.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -25,8 +26,19 @@ namespace pedesis {
 
 class EventQueue {
   public:
-    void build(const std::vector<double>& times);
-    bool empty() const { return time_.empty(); }
+    void build(const std::vector<double>& times) {
+        build_from(times.size(), [&](std::uint32_t who) { return times[who]; });
+    }
+    // The same with particle who's time given by time_of(who), asked once per particle in
+    // increasing order (the engine predicts into it without an array of its own).
+    template <class TimeOf> void build_from(std::size_t n, TimeOf&& time_of) {
+        node_.resize(n);
+        for (std::uint32_t who = 0; who < n; ++who)
+            node_[who] = {time_of(who), none, none, none, none};
+        slots_ = std::bit_ceil(std::max<std::uint32_t>(static_cast<std::uint32_t>(n), 16));
+        rebuild();
+    }
+    bool empty() const { return node_.empty(); }
 
     // The earliest event (after moving the next non-empty bucket into the heap). When no
     // event has a finite time, top_time() is +infinity and top() any particle.
@@ -46,7 +58,11 @@ class EventQueue {
         if (++updates_ >= retune_after_) maybe_retune();
     }
 
+    // Particle who's pending event time (the engine keeps no copy).
+    double time(std::uint32_t who) const { return node_[who].t; }
     double bucket_width() const { return width_; }
+    // Its per-particle arrays on huge pages (core/huge_pages.hpp).
+    void use_huge_pages() const;
     std::size_t memory_bytes() const;
 
   private:
@@ -55,7 +71,7 @@ class EventQueue {
         std::uint32_t who;
     };
     static constexpr std::uint32_t none = 0xffffffffu;
-    // where_[who] below the bucket count is a bucket slot; otherwise one of these:
+    // a Node's where below the bucket count is a bucket slot; otherwise one of these:
     static constexpr std::uint32_t in_heap = 0xfffffffcu;
     static constexpr std::uint32_t in_overflow = 0xfffffffdu;
     static constexpr std::uint32_t in_never = 0xfffffffeu;
@@ -74,7 +90,7 @@ class EventQueue {
     // give (only asked for when nothing else is pending).
     std::uint32_t never_head() const {
         std::uint32_t best = none;
-        for (std::uint32_t who = list_head_[slots_ + 1]; who != none; who = next_[who])
+        for (std::uint32_t who = list_head_[slots_ + 1]; who != none; who = node_[who].next)
             best = std::min(best, who);
         return best;
     }
@@ -89,7 +105,7 @@ class EventQueue {
     void sift_down(std::uint32_t k);
     void place(std::uint32_t k, const Entry& e) {
         heap_[k] = e;
-        heap_pos_[e.who] = k;
+        node_[e.who].heap_pos = k;
     }
     void settle() {
         if (heap_.empty()) advance();
@@ -100,8 +116,13 @@ class EventQueue {
     void maybe_retune();
     void rebuild();
 
-    std::vector<double> time_;
-    std::vector<std::uint32_t> where_, next_, prev_, heap_pos_;
+    // Everything the calendar keeps of one particle, in one record: at 10^6 particles a
+    // particle's entry is a cache miss, one per record instead of one per array (five).
+    struct Node {
+        double t;
+        std::uint32_t where, next, prev, heap_pos;
+    };
+    std::vector<Node> node_;
     // heads of the bucket lists, then of the overflow list and of the list of events
     // that never happen (slots_ and slots_ + 1)
     std::vector<std::uint32_t> list_head_;
