@@ -101,13 +101,13 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     // sorted; a restored engine keeps its order and so continues bit for bit.
     p_.apply_order(space_filling_order(box_, p_.position, p_.tag, 2.0 * max_radius));
 
-    t_.assign(p_.size(), 0.0);
-    count_.assign(p_.size(), 0);
-    if (params_.tc > 0.0) last_collision_.assign(p_.size(), -never);
+    take_flights(std::vector<double>(p_.size(), 0.0), std::vector<std::uint32_t>(p_.size(), 0),
+                 std::vector<std::uint16_t>(p_.size(), 0));
+    if (params_.tc > 0.0) last_collision_.assign(size(), -never);
     kinetic_ = 0.0;
-    for (std::size_t i = 0; i < p_.size(); ++i)
-        if (inv_mass_[p_.species[i]] > 0.0)
-            kinetic_ += 0.5 * norm2(p_.velocity[i]) / inv_mass_[p_.species[i]];
+    for (std::size_t i = 0; i < size(); ++i)
+        if (inv_mass_[f_[i].species] > 0.0)
+            kinetic_ += 0.5 * norm2(f_[i].v) / inv_mass_[f_[i].species];
     kinetic_exact_ = kinetic_;
 
     radius_rate_.assign(radius_.size(), 0.0);
@@ -138,7 +138,7 @@ template <int D> bool EventEngine<D>::choose_skin() {
     double max_radius = 0.0, mean_diameter = 0.0;
     for (double r : radius_) max_radius = std::max(max_radius, r);
     for (auto s : p_.species) mean_diameter += 2.0 * radius_[s];
-    mean_diameter /= static_cast<double>(p_.size());
+    mean_diameter /= static_cast<double>(size());
     skin_ = params_.skin >= 0.0 ? params_.skin : default_skin(mean_diameter);
     // The lists' skin must fit between the largest contact and half the periodic length
     // (one image per pair). A box barely wider than that leaves a skin so thin that the
@@ -192,7 +192,7 @@ template <int D> void EventEngine<D>::set_radius_rates() {
 
 template <int D> bool EventEngine<D>::pressure_window_full() const {
     return static_cast<double>(counters_.pair_collisions - window_collisions_) >=
-           growth_window_collisions * static_cast<double>(p_.size());
+           growth_window_collisions * static_cast<double>(size());
 }
 
 template <int D> bool EventEngine<D>::growth_due() const {
@@ -222,9 +222,9 @@ template <int D> void EventEngine<D>::schedule_growth_step() {
 // anew. A full step (the lists' allowance used up, or growth over) also moves the
 // radii's reference to now_ and rebuilds the lists; a thermostat step keeps both.
 template <int D> void EventEngine<D>::growth_step(bool full) {
-    for (std::uint32_t i = 0; i < p_.size(); ++i) {
+    for (std::uint32_t i = 0; i < size(); ++i) {
         advance(i);
-        box_.wrap(p_.position[i]);
+        box_.wrap(f_[i].x);
     }
     ++growth_.steps;
     if (pressure_window_full() && now_ > window_time_) {
@@ -241,11 +241,11 @@ template <int D> void EventEngine<D>::growth_step(bool full) {
         end_growth(GrowthEnd::packing_fraction);
 
     const double scale = std::sqrt(growth_kinetic_ / kinetic_);
-    for (auto& v : p_.velocity) v *= scale;
+    for (auto& f : f_) f.v *= scale;
     resum_kinetic_energy();
 
     if (!full && growth_.growing) {
-        queue_.build_from(p_.size(), [&](std::uint32_t i) { return predict(i); });
+        queue_.build_from(size(), [&](std::uint32_t i) { return predict(i); });
         return;
     }
     for (std::size_t s = 0; s < radius_.size(); ++s) {
@@ -285,7 +285,7 @@ template <int D> void EventEngine<D>::relist() {
 // dilute gases it grows with the mean free path, so lists are not rebuilt several
 // times per free flight.
 template <int D> double EventEngine<D>::default_skin(double mean_diameter) const {
-    const double n = static_cast<double>(p_.size()) / box_.volume();
+    const double n = static_cast<double>(size()) / box_.volume();
     const double wanted = D == 2 ? 8.0 : 12.0;
     const double ball = D == 2 ? std::numbers::pi : 4.0 / 3.0 * std::numbers::pi;
     const double reach = std::pow(wanted / (ball * n), 1.0 / D);
@@ -331,7 +331,7 @@ template <int D>
 template <class F>
 void EventEngine<D>::for_each_candidate(std::uint32_t i, F&& f) const {
     const std::size_t classes = grids_.size();
-    const std::size_t c = class_of_[p_.species[i]];
+    const std::size_t c = class_of_[f_[i].species];
     for (std::size_t k = 0; k < classes; ++k)
         grids_[k].for_each_reaching(centre_[i], reach_[c * classes + k], f);
 }
@@ -343,12 +343,13 @@ template <int D> std::size_t EventEngine<D>::grids_memory() const {
 }
 
 template <int D> void EventEngine<D>::build_all_lists() {
-    const auto n = static_cast<std::uint32_t>(p_.size());
-    centre_ = p_.position;
+    const auto n = static_cast<std::uint32_t>(size());
+    centre_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) centre_[i] = f_[i].x;
     for (std::size_t k = 0; k < grids_.size(); ++k) {
         grids_[k].clear(n);
         for (std::uint32_t i = n; i-- > 0;)
-            if (class_of_[p_.species[i]] == k) grids_[k].insert(i, centre_[i]);
+            if (class_of_[f_[i].species] == k) grids_[k].insert(i, centre_[i]);
     }
     // size the lists from the real counts, with room to grow as the fluid moves
     std::vector<std::uint16_t> counts(n, 0);
@@ -361,7 +362,7 @@ template <int D> void EventEngine<D>::build_all_lists() {
         max_count = std::max(max_count, c);
     }
     stride_ = std::max<std::uint32_t>(8, max_count + max_count / 2 + 2);
-    n_nbr_.assign(n, 0);
+    for (auto& f : f_) f.n_nbr = 0;
     nbr_.assign(static_cast<std::size_t>(n) * stride_, 0);
     for (std::uint32_t i = 0; i < n; ++i) {
         for_each_candidate(i, [&](std::uint32_t j) {
@@ -371,7 +372,7 @@ template <int D> void EventEngine<D>::build_all_lists() {
 }
 
 template <int D> void EventEngine<D>::setup() {
-    const auto n = static_cast<std::uint32_t>(p_.size());
+    const auto n = static_cast<std::uint32_t>(size());
     ev_.assign(n, {no_event, 0});
     queue_.build_from(n, [&](std::uint32_t i) { return predict(i); });
     if (growth_.growing) schedule_growth_step();
@@ -379,32 +380,28 @@ template <int D> void EventEngine<D>::setup() {
 }
 
 template <int D> void EventEngine<D>::use_huge_pages() const {
-    back_with_huge_pages(p_.position);
-    back_with_huge_pages(p_.velocity);
+    back_with_huge_pages(f_);
     back_with_huge_pages(p_.species);
-    back_with_huge_pages(t_);
     back_with_huge_pages(centre_);
-    back_with_huge_pages(count_);
     back_with_huge_pages(ev_);
-    back_with_huge_pages(n_nbr_);
     back_with_huge_pages(nbr_);
     queue_.use_huge_pages();
     for (const auto& grid : grids_) grid.use_huge_pages();
 }
 
 template <int D> void EventEngine<D>::add_neighbor(std::uint32_t i, std::uint32_t j) {
-    if (n_nbr_[i] == stride_ || n_nbr_[j] == stride_) grow_lists();
-    nbr_[static_cast<std::size_t>(i) * stride_ + n_nbr_[i]++] = j;
-    nbr_[static_cast<std::size_t>(j) * stride_ + n_nbr_[j]++] = i;
+    if (f_[i].n_nbr == stride_ || f_[j].n_nbr == stride_) grow_lists();
+    nbr_[static_cast<std::size_t>(i) * stride_ + f_[i].n_nbr++] = j;
+    nbr_[static_cast<std::size_t>(j) * stride_ + f_[j].n_nbr++] = i;
 }
 
 template <int D> void EventEngine<D>::remove_neighbor(std::uint32_t i, std::uint32_t j) {
     std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
-    const std::uint16_t n = n_nbr_[i];
+    const std::uint16_t n = f_[i].n_nbr;
     for (std::uint16_t k = 0; k < n; ++k) {
         if (list[k] == j) {
             list[k] = list[n - 1];
-            n_nbr_[i] = n - 1;
+            f_[i].n_nbr = n - 1;
             return;
         }
     }
@@ -414,9 +411,9 @@ template <int D> void EventEngine<D>::grow_lists() {
     const std::uint32_t new_stride = stride_ + stride_ / 2 + 4;
     if (new_stride > 65535)
         throw RunError("event engine: a neighbour list exceeds 65535 entries; reduce event.skin");
-    std::vector<std::uint32_t> grown(p_.size() * static_cast<std::size_t>(new_stride));
-    for (std::size_t i = 0; i < p_.size(); ++i)
-        std::copy_n(&nbr_[i * stride_], n_nbr_[i], &grown[i * new_stride]);
+    std::vector<std::uint32_t> grown(size() * static_cast<std::size_t>(new_stride));
+    for (std::size_t i = 0; i < size(); ++i)
+        std::copy_n(&nbr_[i * stride_], f_[i].n_nbr, &grown[i * new_stride]);
     nbr_ = std::move(grown);
     stride_ = new_stride;
     back_with_huge_pages(nbr_);
@@ -431,10 +428,10 @@ template <int D> void EventEngine<D>::prefetch_list(std::uint32_t i) const {
 }
 
 template <int D> void EventEngine<D>::advance(std::uint32_t i) {
-    const double dt = now_ - t_[i];
+    const double dt = now_ - f_[i].t;
     if (dt != 0.0) {
-        p_.position[i] += p_.velocity[i] * dt;
-        t_[i] = now_;
+        f_[i].x += f_[i].v * dt;
+        f_[i].t = now_;
     }
 }
 
@@ -445,9 +442,9 @@ template <int D> double EventEngine<D>::predict(std::uint32_t i) {
 // The earliest event of particle i. While the radii grow (Growing), contact and wall
 // distances move; the other branch is the plain hot loop.
 template <int D> template <bool Growing> double EventEngine<D>::predict_with(std::uint32_t i) {
-    const Vec<D> vi = p_.velocity[i];
-    const Vec<D> xi = p_.position[i] + vi * (now_ - t_[i]);
-    const std::size_t si = p_.species[i];
+    const Vec<D> vi = f_[i].v;
+    const Vec<D> xi = f_[i].x + vi * (now_ - f_[i].t);
+    const std::size_t si = f_[i].species;
     const double ri = Growing ? radius_now(si) : radius_[si];
 
     double best = shell_exit_time(box_.minimum_image(xi - centre_[i]), vi, shell_);
@@ -465,25 +462,23 @@ template <int D> template <bool Growing> double EventEngine<D>::predict_with(std
         }
     }
     const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
-    const std::uint16_t n = n_nbr_[i];
+    const std::uint16_t n = f_[i].n_nbr;
     // Every neighbour's data is asked for before any is used: the loop below branches on
     // whether each pair approaches, which no predictor guesses, and each miss of a branch
     // would otherwise discard the loads started for the neighbours after it.
     for (std::uint16_t k = 0; k < n; ++k) {
         const std::uint32_t j = list[k];
-        __builtin_prefetch(&t_[j]);
-        __builtin_prefetch(&p_.position[j]);
-        __builtin_prefetch(&p_.velocity[j]);
+        __builtin_prefetch(&f_[j]);
     }
     if (!Growing && pair_times_ != nullptr) {
         earliest_listed_lanes(i, xi, vi, ri, best, partner);
     } else {
         for (std::uint16_t k = 0; k < n; ++k) {
             const std::uint32_t j = list[k];
-            const std::size_t sj = p_.species[j];
-            const Vec<D> xj = p_.position[j] + p_.velocity[j] * (now_ - t_[j]);
+            const std::size_t sj = f_[j].species;
+            const Vec<D> xj = f_[j].x + f_[j].v * (now_ - f_[j].t);
             const Vec<D> dr = box_.minimum_image(xi - xj);
-            const Vec<D> dv = vi - p_.velocity[j];
+            const Vec<D> dv = vi - f_[j].v;
             double tc;
             if constexpr (Growing)
                 tc = growing_pair_collision_time(dr, dv, ri + radius_now(sj),
@@ -497,7 +492,7 @@ template <int D> template <bool Growing> double EventEngine<D>::predict_with(std
         }
     }
     if (best == never) partner = no_event;
-    ev_[i] = {partner, partner >= 0 ? count_[partner] : 0};
+    ev_[i] = {partner, partner >= 0 ? f_[partner].count : 0};
     return now_ + best;
 }
 
@@ -510,24 +505,12 @@ template <int D>
 void EventEngine<D>::earliest_listed_lanes(std::uint32_t i, const Vec<D>& xi, const Vec<D>& vi,
                                            double ri, double& best, std::int32_t& partner) {
     const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
-    const std::size_t n = n_nbr_[i];
+    const std::size_t n = f_[i].n_nbr;
     const std::size_t room = pair_times_room(n);
     if (lane_scratch_.size() < 3 * room) lane_scratch_.resize(3 * room);
     const PairTimes out{lane_scratch_.data(), lane_scratch_.data() + room,
                         lane_scratch_.data() + 2 * room};
-    PairTimesInput<D> in{p_.position.data(),
-                         p_.velocity.data(),
-                         t_.data(),
-                         p_.species.data(),
-                         radius_.data(),
-                         list,
-                         n,
-                         xi,
-                         vi,
-                         ri,
-                         now_,
-                         {},
-                         {}};
+    PairTimesInput<D> in{f_.data(), radius_.data(), list, n, xi, vi, ri, now_, {}, {}};
     for (int a = 0; a < D; ++a) {
         in.half[a] = box_.periodic(a) ? box_.hi(a) : never;
         in.length[a] = box_.length(a);
@@ -558,7 +541,7 @@ template <int D> void EventEngine<D>::set_wall_restitution(double xi) {
 template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_t j) {
     advance(i);
     advance(j);
-    const Vec<D> dr = box_.minimum_image(p_.position[i] - p_.position[j]);
+    const Vec<D> dr = box_.minimum_image(f_[i].x - f_[j].x);
     const double dist = norm(dr);
     const Vec<D> n = dr * (1.0 / dist);
     double xi = params_.restitution;
@@ -567,19 +550,18 @@ template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_
             xi = 1.0;
         last_collision_[i] = last_collision_[j] = now_;
     }
-    const std::size_t si = p_.species[i], sj = p_.species[j];
+    const std::size_t si = f_[i].species, sj = f_[j].species;
     const PairImpulse res =
-        growth_.growing
-            ? collide_growing_pair(p_.velocity[i], p_.velocity[j], n, inv_mass_[si], inv_mass_[sj],
-                                   xi, radius_rate_[si] + radius_rate_[sj])
-            : collide_pair(p_.velocity[i], p_.velocity[j], n, inv_mass_[si], inv_mass_[sj], xi);
+        growth_.growing ? collide_growing_pair(f_[i].v, f_[j].v, n, inv_mass_[si], inv_mass_[sj],
+                                               xi, radius_rate_[si] + radius_rate_[sj])
+                        : collide_pair(f_[i].v, f_[j].v, n, inv_mass_[si], inv_mass_[sj], xi);
     add_collision_virial(counters_, res.impulse, n, dr);
     kinetic_ += res.energy_change;
     if (kinetic_ < 0.5 * kinetic_exact_) resum_kinetic_energy();
     counters_.energy_lost -= res.energy_change;
     ++counters_.pair_collisions;
-    ++count_[i];
-    ++count_[j];
+    ++f_[i].count;
+    ++f_[j].count;
 }
 
 template <int D> void EventEngine<D>::process_wall(std::uint32_t i, std::int32_t code) {
@@ -592,24 +574,24 @@ template <int D> void EventEngine<D>::process_wall(std::uint32_t i, std::int32_t
         last_collision_[i] = now_;
     }
     // pin the particle exactly onto the contact plane so rounding never lets it leak out
-    const std::size_t s = p_.species[i];
+    const std::size_t s = f_[i].species;
     const double r = radius_now(s);
-    p_.position[i][a] = side ? box_.hi(a) - r : box_.lo(a) + r;
-    const double before = p_.velocity[i][a];
+    f_[i].x[a] = side ? box_.hi(a) - r : box_.lo(a) + r;
+    const double before = f_[i].v[a];
     const double m = 1.0 / inv_mass_[s];
     double lost = 0.5 * m * (1.0 - xi * xi) * before * before;
     if (growth_.growing) {
         counters_.wall_impulse[a][side] +=
-            collide_growing_wall(p_.velocity[i][a], m, xi, radius_rate_[s], side ? 1.0 : -1.0);
-        lost = 0.5 * m * (before * before - p_.velocity[i][a] * p_.velocity[i][a]);
+            collide_growing_wall(f_[i].v[a], m, xi, radius_rate_[s], side ? 1.0 : -1.0);
+        lost = 0.5 * m * (before * before - f_[i].v[a] * f_[i].v[a]);
     } else {
-        counters_.wall_impulse[a][side] += collide_wall(p_.velocity[i][a], m, xi);
+        counters_.wall_impulse[a][side] += collide_wall(f_[i].v[a], m, xi);
     }
     kinetic_ -= lost;
     if (kinetic_ < 0.5 * kinetic_exact_) resum_kinetic_energy();
     counters_.energy_lost += lost;
     ++counters_.wall_collisions;
-    ++count_[i];
+    ++f_[i].count;
 }
 
 // The running kinetic energy carries a rounding error of order 1e-16 of the energy it
@@ -617,9 +599,8 @@ template <int D> void EventEngine<D>::process_wall(std::uint32_t i, std::int32_t
 // turn negative), so the sum is redone from the velocities each time it halves.
 template <int D> void EventEngine<D>::resum_kinetic_energy() {
     double k = 0.0;
-    for (std::size_t i = 0; i < p_.size(); ++i)
-        if (inv_mass_[p_.species[i]] > 0.0)
-            k += 0.5 * norm2(p_.velocity[i]) / inv_mass_[p_.species[i]];
+    for (std::size_t i = 0; i < size(); ++i)
+        if (inv_mass_[f_[i].species] > 0.0) k += 0.5 * norm2(f_[i].v) / inv_mass_[f_[i].species];
     kinetic_ = kinetic_exact_ = k;
 }
 
@@ -629,10 +610,10 @@ template <int D> void EventEngine<D>::resum_kinetic_energy() {
 // a staying partner's row keeps its order, which matters only for exactly tied events).
 template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     advance(i);
-    box_.wrap(p_.position[i]);
-    CellList<D>& grid = grids_[class_of_[p_.species[i]]];
+    box_.wrap(f_[i].x);
+    CellList<D>& grid = grids_[class_of_[f_[i].species]];
     grid.remove(i);
-    centre_[i] = p_.position[i];
+    centre_[i] = f_[i].x;
     grid.insert(i, centre_[i]);
     // the cells' chains first, every candidate's centre asked for on the way, then the
     // distances (as in predict_with: no mispredicted branch discards the loads)
@@ -657,17 +638,17 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
         return found;
     };
     const std::uint32_t* row = &nbr_[static_cast<std::size_t>(i) * stride_];
-    old_list_.assign(row, row + n_nbr_[i]);
+    old_list_.assign(row, row + f_[i].n_nbr);
     for (std::uint32_t j : old_list_)
         if (!holds(fresh_list_.data(), fresh_list_.size(), j)) remove_neighbor(j, i);
     while (fresh_list_.size() > stride_) grow_lists();
     for (std::uint32_t j : fresh_list_) {
         if (holds(old_list_.data(), old_list_.size(), j)) continue;
-        if (n_nbr_[j] == stride_) grow_lists();
-        nbr_[static_cast<std::size_t>(j) * stride_ + n_nbr_[j]++] = i;
+        if (f_[j].n_nbr == stride_) grow_lists();
+        nbr_[static_cast<std::size_t>(j) * stride_ + f_[j].n_nbr++] = i;
     }
     std::copy(fresh_list_.begin(), fresh_list_.end(), &nbr_[static_cast<std::size_t>(i) * stride_]);
-    n_nbr_[i] = static_cast<std::uint16_t>(fresh_list_.size());
+    f_[i].n_nbr = static_cast<std::uint16_t>(fresh_list_.size());
     ++counters_.list_rebuilds;
 }
 
@@ -711,7 +692,7 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
             // tenth of the allowance ends a jam in a tenth of the time (fuzz_run found
             // 68 jammed disks taking 15 s under the sanitizers to reach the full one).
             const std::uint64_t allowance = growth_.growing ? 20 : 200;
-            if (++stalled_events_ > 1000 + allowance * static_cast<std::uint64_t>(p_.size())) {
+            if (++stalled_events_ > 1000 + allowance * static_cast<std::uint64_t>(size())) {
                 std::ostringstream m;
                 m << "event engine: time stopped advancing at t = " << te << " (" << stalled_events_
                   << " events at the same instant, last at " << tag_name(p_.tag[i]) << "); "
@@ -727,7 +708,7 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
         if (partner >= 0) {
             const auto j = static_cast<std::uint32_t>(partner);
             prefetch_list(j);
-            if (count_[j] != ev_[i].count) {
+            if (f_[j].count != ev_[i].count) {
                 ++counters_.stale_events;
                 queue_.update(i, predict(i));
                 continue;
@@ -762,25 +743,56 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
 }
 
 template <int D> Vec<D> EventEngine<D>::position_now(std::size_t i) const {
-    Vec<D> r = p_.position[i] + p_.velocity[i] * (now_ - t_[i]);
+    Vec<D> r = f_[i].x + f_[i].v * (now_ - f_[i].t);
     box_.wrap(r);
     return r;
 }
 
+template <int D>
+void EventEngine<D>::take_flights(const std::vector<double>& t,
+                                  const std::vector<std::uint32_t>& counts,
+                                  const std::vector<std::uint16_t>& row_lengths) {
+    const std::size_t n = p_.size();
+    f_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        f_[i] = {p_.position[i], t[i], p_.velocity[i], counts[i], p_.species[i], row_lengths[i]};
+    // from here on f_ holds them; lazy_particles() copies them back when asked
+    std::vector<Vec<D>>().swap(p_.position);
+    std::vector<Vec<D>>().swap(p_.velocity);
+}
+
+template <int D> const ParticleStore<D>& EventEngine<D>::lazy_particles() const {
+    p_.position.resize(size());
+    p_.velocity.resize(size());
+    for (std::size_t i = 0; i < size(); ++i) {
+        p_.position[i] = f_[i].x;
+        p_.velocity[i] = f_[i].v;
+    }
+    return p_;
+}
+
 template <int D> ParticleStore<D> EventEngine<D>::snapshot() const {
-    ParticleStore<D> s = p_;
-    for (std::size_t i = 0; i < s.size(); ++i) s.position[i] = position_now(i);
+    ParticleStore<D> s;
+    s.tag = p_.tag;
+    s.species = p_.species;
+    s.species_table = p_.species_table;
+    s.position.resize(size());
+    s.velocity.resize(size());
+    for (std::size_t i = 0; i < size(); ++i) {
+        s.position[i] = position_now(i);
+        s.velocity[i] = f_[i].v;
+    }
     for (std::size_t k = 0; k < radius_.size(); ++k) s.species_table[k].radius = radius_now(k);
     return s;
 }
 
 template <int D>
 void EventEngine<D>::check_particle_overlap(std::uint32_t i, double rel_tol) const {
-    const Vec<D> xi = p_.position[i] + p_.velocity[i] * (now_ - t_[i]);
+    const Vec<D> xi = f_[i].x + f_[i].v * (now_ - f_[i].t);
     const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
-    for (std::uint16_t k = 0; k < n_nbr_[i]; ++k) {
+    for (std::uint16_t k = 0; k < f_[i].n_nbr; ++k) {
         const std::uint32_t j = list[k];
-        const Vec<D> xj = p_.position[j] + p_.velocity[j] * (now_ - t_[j]);
+        const Vec<D> xj = f_[j].x + f_[j].v * (now_ - f_[j].t);
         const double d = norm(box_.minimum_image(xi - xj));
         const double s = contact_now(i, j);
         if (d < s * (1.0 - rel_tol)) {
@@ -797,8 +809,8 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
     // size class with cells of the class's diameter, scanned as far as each pair of
     // classes can touch (so small particles do not scan cells sized by the largest).
     // (positions only, not a whole snapshot: at the start this is the run's peak memory)
-    std::vector<Vec<D>> pos(p_.size());
-    for (std::size_t i = 0; i < p_.size(); ++i) pos[i] = position_now(i);
+    std::vector<Vec<D>> pos(size());
+    for (std::size_t i = 0; i < size(); ++i) pos[i] = position_now(i);
     const std::size_t classes = class_radius_.size();
     std::vector<double> largest(classes, 0.0);
     for (std::size_t k = 0; k < radius_.size(); ++k)
@@ -808,9 +820,9 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
         cells.emplace_back(box_, 2.0 * largest[k]);
         cells.back().clear(pos.size());
     }
-    for (std::uint32_t i = pos.size(); i-- > 0;) cells[class_of_[p_.species[i]]].insert(i, pos[i]);
+    for (std::uint32_t i = pos.size(); i-- > 0;) cells[class_of_[f_[i].species]].insert(i, pos[i]);
     for (std::uint32_t i = 0; i < pos.size(); ++i) {
-        const std::size_t c = class_of_[p_.species[i]];
+        const std::size_t c = class_of_[f_[i].species];
         for (std::size_t k = 0; k < classes; ++k) {
             const int reach = cells[k].cells_to_reach(largest[c] + largest[k]);
             cells[k].for_each_within(pos[i], reach, [&](std::uint32_t j) {
@@ -834,9 +846,10 @@ template <int D> void EventEngine<D>::check_no_overlap(double rel_tol) const {
 
 template <int D> std::size_t EventEngine<D>::memory_bytes() const {
     auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-    return bytes(p_.position) + bytes(p_.velocity) + bytes(p_.tag) + bytes(p_.species) + bytes(t_) +
-           bytes(centre_) + bytes(count_) + bytes(ev_) + bytes(last_collision_) + bytes(n_nbr_) +
-           bytes(nbr_) + grids_memory() + queue_.memory_bytes();
+    // (the lazy copies of positions and velocities only while an observer holds them)
+    return bytes(f_) + bytes(p_.position) + bytes(p_.velocity) + bytes(p_.tag) + bytes(p_.species) +
+           bytes(centre_) + bytes(ev_) + bytes(last_collision_) + bytes(nbr_) + grids_memory() +
+           queue_.memory_bytes();
 }
 
 namespace {
@@ -870,18 +883,31 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, growth_.ended);
     put(out, growth_.last_pressure);
     put(out, growth_.steps);
-    put(out, p_.position);
-    put(out, p_.velocity);
+    // the layout of the versions with one array per field (the file does not change)
+    const std::size_t n = size();
+    std::vector<Vec<D>> positions(n), velocities(n);
+    std::vector<double> flight_times(n);
+    std::vector<std::uint32_t> collision_counts(n);
+    std::vector<std::uint16_t> row_lengths(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        positions[i] = f_[i].x;
+        velocities[i] = f_[i].v;
+        flight_times[i] = f_[i].t;
+        collision_counts[i] = f_[i].count;
+        row_lengths[i] = f_[i].n_nbr;
+    }
+    put(out, positions);
+    put(out, velocities);
     put(out, p_.tag);
     put(out, p_.species);
-    put(out, t_);
+    put(out, flight_times);
     put(out, centre_);
-    put(out, count_);
+    put(out, collision_counts);
     // the layout of versions with three arrays (the file does not change with the records)
-    std::vector<double> times(p_.size());
-    std::vector<std::int32_t> partners(p_.size());
-    std::vector<std::uint32_t> counts(p_.size());
-    for (std::uint32_t i = 0; i < p_.size(); ++i) {
+    std::vector<double> times(n);
+    std::vector<std::int32_t> partners(n);
+    std::vector<std::uint32_t> counts(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
         times[i] = queue_.time(i);
         partners[i] = ev_[i].partner;
         counts[i] = ev_[i].count;
@@ -891,7 +917,7 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, counts);
     put(out, last_collision_);
     put(out, stride_);
-    put(out, n_nbr_);
+    put(out, row_lengths);
     put(out, nbr_);
     for (const auto& grid : grids_) grid.save([&](const auto& v) { put(out, v); });
 }
@@ -948,9 +974,12 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     get(in, e.p_.velocity);
     get(in, e.p_.tag);
     get(in, e.p_.species);
-    get(in, e.t_);
+    std::vector<double> flight_times;
+    std::vector<std::uint32_t> collision_counts;
+    std::vector<std::uint16_t> row_lengths;
+    get(in, flight_times);
     get(in, e.centre_);
-    get(in, e.count_);
+    get(in, collision_counts);
     std::vector<double> times;
     std::vector<std::int32_t> partners;
     std::vector<std::uint32_t> counts;
@@ -959,21 +988,21 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     get(in, counts);
     get(in, e.last_collision_);
     get(in, e.stride_);
-    get(in, e.n_nbr_);
+    get(in, row_lengths);
     get(in, e.nbr_);
     const std::size_t n = e.p_.position.size();
     if (n == 0 || e.p_.velocity.size() != n || e.p_.tag.size() != n || e.p_.species.size() != n ||
-        e.t_.size() != n || e.centre_.size() != n || e.count_.size() != n || times.size() != n ||
-        partners.size() != n || counts.size() != n || e.n_nbr_.size() != n ||
-        e.nbr_.size() != n * e.stride_)
+        flight_times.size() != n || e.centre_.size() != n || collision_counts.size() != n ||
+        times.size() != n || partners.size() != n || counts.size() != n ||
+        row_lengths.size() != n || e.nbr_.size() != n * e.stride_)
         throw InputError("checkpoint: inconsistent array sizes (corrupt file)");
     if (params.tc > 0.0 && e.last_collision_.size() != n) e.last_collision_.assign(n, -never);
     for (auto s : e.p_.species)
         if (s >= e.p_.species_table.size()) throw InputError("checkpoint: corrupt species index");
     check_restored_particles(e.p_, e.box_, false); // before anything is built from them
     for (std::size_t i = 0; i < n; ++i) {
-        if (e.n_nbr_[i] > e.stride_) throw InputError("checkpoint: corrupt neighbour list");
-        for (std::uint16_t k = 0; k < e.n_nbr_[i]; ++k)
+        if (row_lengths[i] > e.stride_) throw InputError("checkpoint: corrupt neighbour list");
+        for (std::uint16_t k = 0; k < row_lengths[i]; ++k)
             if (e.nbr_[i * e.stride_ + k] >= n)
                 throw InputError("checkpoint: corrupt neighbour list");
         // a particle, no event, the shell or one of the 2 D walls (a code below them would
@@ -982,6 +1011,7 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
             partners[i] >= static_cast<std::int32_t>(n))
             throw InputError("checkpoint: corrupt event");
     }
+    e.take_flights(flight_times, collision_counts, row_lengths);
     e.make_grids();
     for (auto& grid : e.grids_) grid.load([&](auto& v) { get(in, v); });
     e.ev_.resize(n);

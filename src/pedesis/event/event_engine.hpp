@@ -20,6 +20,7 @@
 #include "pedesis/core/collision_counters.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_queue.hpp"
+#include "pedesis/event/flight.hpp"
 #include "pedesis/event/pair_times.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
@@ -82,7 +83,7 @@ template <int D> class EventEngine {
     void set_wall_restitution(double xi);
     const EventCounters<D>& counters() const { return counters_; }
     double kinetic_energy() const { return kinetic_; }
-    std::size_t size() const { return p_.size(); }
+    std::size_t size() const { return f_.size(); }
     double skin() const { return skin_; }
     // Volume fraction of the particles at the current time (radii grow with growth).
     double packing_fraction() const;
@@ -92,8 +93,10 @@ template <int D> class EventEngine {
     Vec<D> position_now(std::size_t i) const;
     // All particles at the current time, wrapped, in storage order.
     ParticleStore<D> snapshot() const;
-    // Particle data whose velocities, tags and species are current (positions are not).
-    const ParticleStore<D>& lazy_particles() const { return p_; }
+    // Particle data whose velocities, tags and species are current (positions are not:
+    // each is at the particle's own time): copies the engine fills at each call and keeps
+    // (48 bytes per particle in 3D).
+    const ParticleStore<D>& lazy_particles() const;
 
     // Throws RunError naming the pair if any two particles overlap by more than a
     // relative tolerance (debug and tests).
@@ -165,7 +168,14 @@ template <int D> class EventEngine {
     void earliest_listed_lanes(std::uint32_t i, const Vec<D>& xi, const Vec<D>& vi, double ri,
                                double& best, std::int32_t& partner);
 
-    ParticleStore<D> p_; // positions here are r_i at time t_i
+    // Tags, species and the species table; positions and velocities only as
+    // lazy_particles() fills them (the engine's own are in f_).
+    mutable ParticleStore<D> p_;
+    std::vector<Flight<D>> f_;
+    // f_ from p_'s positions, velocities and species and the rest given; frees p_'s
+    // positions and velocities.
+    void take_flights(const std::vector<double>& t, const std::vector<std::uint32_t>& counts,
+                      const std::vector<std::uint16_t>& row_lengths);
     Box<D> box_;
     EventParams params_;
     double now_ = 0.0;
@@ -187,9 +197,7 @@ template <int D> class EventEngine {
     double window_virial_ = 0.0;
     GrowthStatus growth_;
 
-    std::vector<double> t_;            // time of r_i
-    std::vector<Vec<D>> centre_;       // neighbour-list centre
-    std::vector<std::uint32_t> count_; // collision counter
+    std::vector<Vec<D>> centre_; // neighbour-list centre
     // Each particle's pending event: its time is the calendar's (queue_.time), and the
     // partner's collision count when it was predicted tells a stale event. One record, so
     // that an event's check reads one cache line of it.
@@ -201,7 +209,6 @@ template <int D> class EventEngine {
     std::vector<double> last_collision_; // only with the TC model
 
     std::uint32_t stride_ = 0; // neighbour slots per particle
-    std::vector<std::uint16_t> n_nbr_;
     std::vector<std::uint32_t> nbr_;
     std::vector<std::uint32_t> candidates_, fresh_list_, old_list_; // rebuild_list's scratch
     // predict_with's batch kernel (core/simd_level.hpp; nullptr: the scalar loop) and

@@ -12,6 +12,7 @@
 #include "pedesis/core/lanes.hpp"
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/core/vec.hpp"
+#include "pedesis/event/flight.hpp"
 #include "pedesis/event/prediction.hpp"
 
 #include <array>
@@ -24,10 +25,7 @@ namespace pedesis {
 // What one batch reads: particle i at time now, and its neighbours as stored (r_j at
 // their own times t_j).
 template <int D> struct PairTimesInput {
-    const Vec<D>* position;
-    const Vec<D>* velocity;
-    const double* t;
-    const std::uint16_t* species;
+    const Flight<D>* flight;
     const double* radius; // per species
     const std::uint32_t* list;
     std::size_t n;
@@ -61,14 +59,14 @@ template <int D>
         // written to the arrays' spare room and never read
         std::uint32_t j[4];
         for (std::size_t l = 0; l < 4; ++l) j[l] = in.list[k + l < in.n ? k + l : k];
-        const lanes4 dt = in.now - lanes4{in.t[j[0]], in.t[j[1]], in.t[j[2]], in.t[j[3]]};
+        const Flight<D>* f[4] = {&in.flight[j[0]], &in.flight[j[1]], &in.flight[j[2]],
+                                 &in.flight[j[3]]};
+        const lanes4 dt = in.now - lanes4{f[0]->t, f[1]->t, f[2]->t, f[3]->t};
         // dot's order: 0.0, then each axis's product added
         lanes4 b = {}, dr2 = {}, dv2 = {};
         for (int a = 0; a < D; ++a) {
-            const lanes4 x = {in.position[j[0]][a], in.position[j[1]][a], in.position[j[2]][a],
-                              in.position[j[3]][a]};
-            const lanes4 v = {in.velocity[j[0]][a], in.velocity[j[1]][a], in.velocity[j[2]][a],
-                              in.velocity[j[3]][a]};
+            const lanes4 x = {f[0]->x[a], f[1]->x[a], f[2]->x[a], f[3]->x[a]};
+            const lanes4 v = {f[0]->v[a], f[1]->v[a], f[2]->v[a], f[3]->v[a]};
             lanes4 d = in.xi[a] - (x + v * dt);
             // Box::minimum_image: subtract L above L/2, else add it below -L/2
             d = select(d > in.half[a], d - in.length[a],
@@ -79,7 +77,7 @@ template <int D>
             dv2 += dv * dv;
         }
         lanes4 sigma;
-        for (int l = 0; l < 4; ++l) sigma[l] = in.ri + in.radius[in.species[j[l]]];
+        for (int l = 0; l < 4; ++l) sigma[l] = in.ri + in.radius[f[l]->species];
         const lanes4 c = dr2 - sigma * sigma;
         const lanes4 disc = b * b - dv2 * c;
         const mask4 hit = (b < 0.0) & (disc > 0.0);
