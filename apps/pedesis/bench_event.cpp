@@ -1,7 +1,6 @@
 #include "bench_event.hpp"
 
 #include "pedesis/core/error.hpp"
-#include "pedesis/core/huge_pages.hpp"
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/setup/lattice.hpp"
@@ -11,9 +10,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <numbers>
 #include <random>
+#include <string>
 #include <utility>
 
 #include <sys/resource.h>
@@ -21,6 +22,22 @@
 namespace pedesis::cli {
 
 namespace {
+
+// Bytes of this process backed by 2 MiB pages (AnonHugePages of /proc/self/smaps_rollup;
+// 0 where the system does not say): whether huge_pages.cpp's request was granted.
+std::size_t huge_page_bytes() {
+    std::ifstream in("/proc/self/smaps_rollup");
+    std::string key;
+    std::size_t kib = 0;
+    while (in >> key) {
+        if (key == "AnonHugePages:") {
+            in >> kib;
+            return kib * 1024;
+        }
+        in.ignore(1 << 12, '\n');
+    }
+    return 0;
+}
 
 struct BenchEventOptions {
     int dim = 3;
@@ -158,7 +175,7 @@ template <int D> void run_bench(const BenchEventOptions& o) {
     fmt::print("collisions_per_second: {:.0f}\n", collisions / seconds);
     fmt::print("bytes_per_particle: {:.1f}\n",
                static_cast<double>(engine->memory_bytes()) / static_cast<double>(o.n));
-    // how much of it the kernel backs with 2 MiB pages (core/huge_pages.hpp)
+    // how much of the process the kernel backs with 2 MiB pages (huge_pages.cpp)
     fmt::print("huge_page_bytes_per_particle: {:.1f}\n",
                static_cast<double>(huge_page_bytes()) / static_cast<double>(o.n));
     // the whole process's peak, setup included (ru_maxrss is in KiB on Linux)

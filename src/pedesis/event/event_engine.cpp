@@ -1,7 +1,6 @@
 #include "pedesis/event/event_engine.hpp"
 
 #include "pedesis/core/error.hpp"
-#include "pedesis/core/huge_pages.hpp"
 #include "pedesis/core/interrupt.hpp"
 #include "pedesis/core/particle_checks.hpp"
 #include "pedesis/core/stage.hpp"
@@ -376,17 +375,6 @@ template <int D> void EventEngine<D>::setup() {
     ev_.assign(n, {no_event, 0});
     queue_.build_from(n, [&](std::uint32_t i) { return predict(i); });
     if (growth_.growing) schedule_growth_step();
-    use_huge_pages();
-}
-
-template <int D> void EventEngine<D>::use_huge_pages() const {
-    back_with_huge_pages(f_);
-    back_with_huge_pages(p_.species);
-    back_with_huge_pages(centre_);
-    back_with_huge_pages(ev_);
-    back_with_huge_pages(nbr_);
-    queue_.use_huge_pages();
-    for (const auto& grid : grids_) grid.use_huge_pages();
 }
 
 template <int D> void EventEngine<D>::add_neighbor(std::uint32_t i, std::uint32_t j) {
@@ -416,7 +404,6 @@ template <int D> void EventEngine<D>::grow_lists() {
         std::copy_n(&nbr_[i * stride_], f_[i].n_nbr, &grown[i * new_stride]);
     nbr_ = std::move(grown);
     stride_ = new_stride;
-    back_with_huge_pages(nbr_);
 }
 
 // A row is read first by the prediction that follows every event, and missed the caches

@@ -120,9 +120,6 @@ template <int D> class EventEngine {
     static constexpr std::int32_t wall_event_base = -3; // -3 - (2 axis + side)
 
     void setup();
-    // The per-particle arrays on huge pages (core/huge_pages.hpp): at 10^6 particles an
-    // event touches a dozen of them at random places.
-    void use_huge_pages() const;
     double default_skin(double mean_diameter) const;
     void build_all_lists();
     void add_neighbor(std::uint32_t i, std::uint32_t j);

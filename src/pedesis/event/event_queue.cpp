@@ -1,16 +1,10 @@
 #include "pedesis/event/event_queue.hpp"
 
-#include "pedesis/core/huge_pages.hpp"
-
 #include <algorithm>
 #include <bit>
 #include <stdexcept>
 
 namespace pedesis {
-
-void EventQueue::use_huge_pages() const {
-    back_with_huge_pages(node_);
-}
 
 // Chooses the width from the pending times so that a bucket holds about
 // target_per_bucket events, and files every event again.

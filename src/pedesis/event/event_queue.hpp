@@ -61,8 +61,6 @@ class EventQueue {
     // Particle who's pending event time (the engine keeps no copy).
     double time(std::uint32_t who) const { return node_[who].t; }
     double bucket_width() const { return width_; }
-    // Its per-particle arrays on huge pages (core/huge_pages.hpp).
-    void use_huge_pages() const;
     std::size_t memory_bytes() const;
 
   private:

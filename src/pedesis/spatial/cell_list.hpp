@@ -10,7 +10,6 @@
 // particle at a time) as well as a full rebuild.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/clamped_int.hpp"
-#include "pedesis/core/huge_pages.hpp"
 
 #include <algorithm>
 #include <array>
@@ -268,10 +267,6 @@ template <int D> class CellList {
     std::size_t memory_bytes() const {
         return head_.capacity() * sizeof(std::int32_t) + next_.capacity() * sizeof(std::int32_t) +
                cell_of_.capacity() * sizeof(std::int32_t);
-    }
-    // Its arrays on huge pages (core/huge_pages.hpp): the event engine's grids at 10^6.
-    void use_huge_pages() const {
-        for (const auto* v : {&head_, &next_, &cell_of_}) back_with_huge_pages(*v);
     }
 
   private:
