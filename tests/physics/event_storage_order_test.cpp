@@ -89,6 +89,54 @@ TEST(EventStorageOrder, TrajectoryDoesNotDependOnTheInputOrderMixtureWithWalls2D
     expect_same_trajectory(box, lattice_gas(box, 1600, 0.5, true), 12.0);
 }
 
+// lazy_particles() is a copy the engine fills from its per-particle records when asked:
+// after a run its velocities, tags and species must be those of the moment (as the
+// snapshot has them), and each position the snapshot's taken back along its velocity to
+// the particle's own time, between 0 and now. Asked again after more collisions, it must
+// not hand back the earlier copy.
+template <int D> void expect_lazy_particles_current(EventEngine<D>& e, double until) {
+    StopLimits lim;
+    lim.time = until;
+    e.run(lim);
+    const ParticleStore<D>& lazy = e.lazy_particles();
+    const ParticleStore<D> now = e.snapshot();
+    ASSERT_EQ(lazy.size(), e.size());
+    ASSERT_EQ(lazy.tag, now.tag);
+    ASSERT_EQ(lazy.species, now.species);
+    std::size_t wrong_velocity = 0, off_line = 0, out_of_time = 0;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+        wrong_velocity += !same_bits(lazy.velocity[i], now.velocity[i]);
+        const Vec<D> v = lazy.velocity[i];
+        const Vec<D> d = e.box().minimum_image(now.position[i] - lazy.position[i]);
+        const double v2 = norm2(v);
+        const double tau = v2 > 0.0 ? dot(d, v) / v2 : 0.0; // how long ago it was there
+        off_line += norm(d - v * tau) > 1e-9 * (1.0 + norm(d));
+        out_of_time += !(tau >= -1e-12 && tau <= e.time() * (1.0 + 1e-12));
+    }
+    EXPECT_EQ(wrong_velocity, 0u) << "at t = " << e.time();
+    EXPECT_EQ(off_line, 0u) << "lazy positions not on the line back from the present ones";
+    EXPECT_EQ(out_of_time, 0u) << "lazy positions from before the start or after now";
+}
+
+TEST(EventStorageOrder, LazyParticlesAreTheRecordsOfTheMoment3D) {
+    const Box<3> box(Vec<3>::filled(15.3), {true, true, true});
+    EventEngine<3> e(lattice_gas(box, 2048, 0.5, false), box, EventParams{});
+    expect_lazy_particles_current(e, 1.0);
+    const auto first = e.lazy_particles().velocity;
+    expect_lazy_particles_current(e, 2.0);
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < first.size(); ++i)
+        changed += !same_bits(first[i], e.lazy_particles().velocity[i]);
+    EXPECT_GT(changed, first.size() / 2) << "most particles collide in one time unit";
+}
+
+TEST(EventStorageOrder, LazyParticlesAreTheRecordsOfTheMomentMixtureWithWalls2D) {
+    const Box<2> box(Vec<2>{{50.0, 46.0}}, {false, true});
+    EventEngine<2> e(lattice_gas(box, 1600, 0.5, true), box, EventParams{});
+    expect_lazy_particles_current(e, 1.5);
+    expect_lazy_particles_current(e, 3.0);
+}
+
 // Contacts of a shuffled 3D start: with the curve's order, the median distance in
 // storage between touching particles is a few dozen places; in random order it would be
 // about N / 3.
