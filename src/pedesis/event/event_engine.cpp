@@ -118,8 +118,10 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
             "between the two",
             min_periodic_length(), 2.0 * (1.0 + min_room_fraction), 2.0 * max_radius));
     make_grids();
-    build_all_lists();
+    // before the lists exist: its copy of the positions then adds to less (the start is
+    // the run's peak memory)
     check_no_overlap(1e-10);
+    build_all_lists();
     setup();
 }
 
@@ -332,7 +334,7 @@ void EventEngine<D>::for_each_candidate(std::uint32_t i, F&& f) const {
     const std::size_t classes = grids_.size();
     const std::size_t c = class_of_[f_[i].species];
     for (std::size_t k = 0; k < classes; ++k)
-        grids_[k].for_each_reaching(centre_[i], reach_[c * classes + k], f);
+        grids_[k].for_each_reaching(ev_[i].centre, reach_[c * classes + k], f);
 }
 
 template <int D> std::size_t EventEngine<D>::grids_memory() const {
@@ -343,12 +345,12 @@ template <int D> std::size_t EventEngine<D>::grids_memory() const {
 
 template <int D> void EventEngine<D>::build_all_lists() {
     const auto n = static_cast<std::uint32_t>(size());
-    centre_.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) centre_[i] = f_[i].x;
+    ev_.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) ev_[i] = {f_[i].x, no_event, 0};
     for (std::size_t k = 0; k < grids_.size(); ++k) {
         grids_[k].clear(n);
         for (std::uint32_t i = n; i-- > 0;)
-            if (class_of_[f_[i].species] == k) grids_[k].insert(i, centre_[i]);
+            if (class_of_[f_[i].species] == k) grids_[k].insert(i, ev_[i].centre);
     }
     // size the lists from the real counts, with room to grow as the fluid moves
     std::vector<std::uint16_t> counts(n, 0);
@@ -372,7 +374,6 @@ template <int D> void EventEngine<D>::build_all_lists() {
 
 template <int D> void EventEngine<D>::setup() {
     const auto n = static_cast<std::uint32_t>(size());
-    ev_.assign(n, {no_event, 0});
     queue_.build_from(n, [&](std::uint32_t i) { return predict(i); });
     if (growth_.growing) schedule_growth_step();
 }
@@ -434,7 +435,7 @@ template <int D> template <bool Growing> double EventEngine<D>::predict_with(std
     const std::size_t si = f_[i].species;
     const double ri = Growing ? radius_now(si) : radius_[si];
 
-    double best = shell_exit_time(box_.minimum_image(xi - centre_[i]), vi, shell_);
+    double best = shell_exit_time(box_.minimum_image(xi - ev_[i].centre), vi, shell_);
     std::int32_t partner = shell_event;
     for (int a = 0; a < D; ++a) {
         if (box_.periodic(a)) continue;
@@ -479,7 +480,8 @@ template <int D> template <bool Growing> double EventEngine<D>::predict_with(std
         }
     }
     if (best == never) partner = no_event;
-    ev_[i] = {partner, partner >= 0 ? f_[partner].count : 0};
+    ev_[i].partner = partner;
+    ev_[i].count = partner >= 0 ? f_[partner].count : 0;
     return now_ + best;
 }
 
@@ -600,13 +602,13 @@ template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     box_.wrap(f_[i].x);
     CellList<D>& grid = grids_[class_of_[f_[i].species]];
     grid.remove(i);
-    centre_[i] = f_[i].x;
-    grid.insert(i, centre_[i]);
+    ev_[i].centre = f_[i].x;
+    grid.insert(i, ev_[i].centre);
     // the cells' chains first, every candidate's centre asked for on the way, then the
     // distances (as in predict_with: no mispredicted branch discards the loads)
     candidates_.clear();
     for_each_candidate(i, [&](std::uint32_t j) {
-        __builtin_prefetch(&centre_[j]);
+        __builtin_prefetch(&ev_[j].centre);
         candidates_.push_back(j);
     });
     // Branch-free (about one candidate in six is a partner, at random): each candidate
@@ -835,7 +837,7 @@ template <int D> std::size_t EventEngine<D>::memory_bytes() const {
     auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
     // (the lazy copies of positions and velocities only while an observer holds them)
     return bytes(f_) + bytes(p_.position) + bytes(p_.velocity) + bytes(p_.tag) + bytes(p_.species) +
-           bytes(centre_) + bytes(ev_) + bytes(last_collision_) + bytes(nbr_) + grids_memory() +
+           bytes(ev_) + bytes(last_collision_) + bytes(nbr_) + grids_memory() +
            queue_.memory_bytes();
 }
 
@@ -872,7 +874,7 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, growth_.steps);
     // the layout of the versions with one array per field (the file does not change)
     const std::size_t n = size();
-    std::vector<Vec<D>> positions(n), velocities(n);
+    std::vector<Vec<D>> positions(n), velocities(n), centres(n);
     std::vector<double> flight_times(n);
     std::vector<std::uint32_t> collision_counts(n);
     std::vector<std::uint16_t> row_lengths(n);
@@ -882,13 +884,14 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
         flight_times[i] = f_[i].t;
         collision_counts[i] = f_[i].count;
         row_lengths[i] = f_[i].n_nbr;
+        centres[i] = ev_[i].centre;
     }
     put(out, positions);
     put(out, velocities);
     put(out, p_.tag);
     put(out, p_.species);
     put(out, flight_times);
-    put(out, centre_);
+    put(out, centres);
     put(out, collision_counts);
     // the layout of versions with three arrays (the file does not change with the records)
     std::vector<double> times(n);
@@ -965,7 +968,8 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     std::vector<std::uint32_t> collision_counts;
     std::vector<std::uint16_t> row_lengths;
     get(in, flight_times);
-    get(in, e.centre_);
+    std::vector<Vec<D>> centres;
+    get(in, centres);
     get(in, collision_counts);
     std::vector<double> times;
     std::vector<std::int32_t> partners;
@@ -979,7 +983,7 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     get(in, e.nbr_);
     const std::size_t n = e.p_.position.size();
     if (n == 0 || e.p_.velocity.size() != n || e.p_.tag.size() != n || e.p_.species.size() != n ||
-        flight_times.size() != n || e.centre_.size() != n || collision_counts.size() != n ||
+        flight_times.size() != n || centres.size() != n || collision_counts.size() != n ||
         times.size() != n || partners.size() != n || counts.size() != n ||
         row_lengths.size() != n || e.nbr_.size() != n * e.stride_)
         throw InputError("checkpoint: inconsistent array sizes (corrupt file)");
@@ -1002,7 +1006,7 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     e.make_grids();
     for (auto& grid : e.grids_) grid.load([&](auto& v) { get(in, v); });
     e.ev_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) e.ev_[i] = {partners[i], counts[i]};
+    for (std::size_t i = 0; i < n; ++i) e.ev_[i] = {centres[i], partners[i], counts[i]};
     e.queue_.build(times);
     return e;
 }

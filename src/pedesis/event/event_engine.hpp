@@ -142,7 +142,7 @@ template <int D> class EventEngine {
     // The one criterion of every list build: list centres within contact + skin.
     bool list_partners(std::uint32_t i, std::uint32_t j) const {
         const double cut = contact(i, j) + skin_;
-        return norm2(box_.minimum_image(centre_[i] - centre_[j])) < cut * cut;
+        return norm2(box_.minimum_image(ev_[i].centre - ev_[j].centre)) < cut * cut;
     }
     double radius_now(std::size_t species) const {
         return radius_[species] + radius_rate_[species] * (now_ - radius_time_);
@@ -194,15 +194,16 @@ template <int D> class EventEngine {
     double window_virial_ = 0.0;
     GrowthStatus growth_;
 
-    std::vector<Vec<D>> centre_; // neighbour-list centre
-    // Each particle's pending event: its time is the calendar's (queue_.time), and the
-    // partner's collision count when it was predicted tells a stale event. One record, so
-    // that an event's check reads one cache line of it.
-    struct PendingEvent {
+    // Each particle's neighbour-list centre and pending event (its time is the calendar's,
+    // queue_.time; the partner's collision count when it was predicted tells a stale
+    // event). One record: the run loop reads the partner, and the prediction that follows
+    // reads the centre (the shell's exit time), in one cache line.
+    struct ListAndEvent {
+        Vec<D> centre;
         std::int32_t partner;
         std::uint32_t count;
     };
-    std::vector<PendingEvent> ev_;
+    std::vector<ListAndEvent> ev_;
     std::vector<double> last_collision_; // only with the TC model
 
     std::uint32_t stride_ = 0; // neighbour slots per particle
