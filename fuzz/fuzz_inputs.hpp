@@ -85,6 +85,7 @@ inline void checkpoint_input(const std::uint8_t* data, std::size_t size) {
     const auto dir = std::filesystem::temp_directory_path() /
                      ("pedesis_fuzz_ckpt_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
+    remove_at_exit(dir);
     const auto path = dir / "checkpoint.bin";
     {
         CheckpointWriter file(path);
@@ -108,6 +109,7 @@ inline void sweep_input(const std::uint8_t* data, std::size_t size) {
     const auto dir = std::filesystem::temp_directory_path() /
                      ("pedesis_fuzz_sweep_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
+    remove_at_exit(dir);
     std::ofstream(dir / "base.toml", std::ios::trunc)
         << "dimension = 2\nseed = 3\n[box]\nlength = 20.0\nboundary = \"wall\"\n"
            "[[species]]\nname = \"A\"\ncount = 20\nradius = 0.5\n[event]\n"

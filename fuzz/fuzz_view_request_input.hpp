@@ -7,6 +7,7 @@
 // afterwards; a crash or sanitizer report in its threads ends the process (a finding).
 // "$PRT" in an input stands for the server's port (chosen at start), so that inputs can
 // name the Host it answers to.
+#include "fuzz_support.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/view/view_server.hpp"
 
@@ -69,6 +70,7 @@ class FuzzedViewServer {
         dir_ = std::filesystem::temp_directory_path() /
                ("pedesis_fuzz_view_" + std::to_string(::getpid()));
         std::filesystem::create_directories(dir_);
+        remove_at_exit(dir_);
         std::ofstream(dir_ / "trajectory.xyz")
             << "2\nLattice=\"4 0 0 0 4 0 0 0 4\" Properties=species:S:1:pos:R:3:radius:R:1 "
                "time=0\nA 1 1 0 0.5\nB 2 2 0 0.5\n2\nLattice=\"4 0 0 0 4 0 0 0 4\" "
