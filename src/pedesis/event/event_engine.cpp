@@ -353,7 +353,6 @@ template <int D> void EventEngine<D>::build_all_lists() {
             if (class_of_[f_[i].species] == k) grids_[k].insert(i, ev_[i].centre);
     }
     // size the lists from the real counts, with room to grow as the fluid moves
-    std::vector<std::uint16_t> counts(n, 0);
     std::uint32_t max_count = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         std::uint32_t c = 0;
