@@ -139,6 +139,16 @@ template <int D> void NeighborList<D>::set_grid(int reach) {
         while (last >= 0 && o[last] == 0) --last;
         if (last >= 0 && o[last] > 0) forward_.push_back(o);
     } while (next(o, first, past, one));
+    stencil_rows_.assign(1, StencilRow{0, 0, zero}); // the cell itself
+    for (const auto& f : forward_) {
+        StencilRow& row = stencil_rows_.back();
+        bool continues = f[0] == row.x1 + 1;
+        for (int a = 1; a < D; ++a) continues = continues && f[a] == row.o[a];
+        if (continues)
+            row.x1 = f[0];
+        else
+            stencil_rows_.push_back(StencilRow{f[0], f[0], f});
+    }
     sweep_cells_.clear();
     sweep_cells_.reserve(cells_.cell_count());
     block_end_.clear();
@@ -379,8 +389,8 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     seg_start;
                 int nr = 0;
                 std::size_t cand = 0; // candidates of each particle of this cell (at most)
-                auto add_cell = [&](std::size_t nc, const Vec<D>& im) {
-                    const std::uint32_t b = cell_start_[nc], e = cell_start_[nc + 1];
+                // the particles [b, e) of cell order, of one or more consecutive cells
+                auto add_range = [&](std::uint32_t b, std::uint32_t e, const Vec<D>& im) {
                     cand += e - b;
                     // Ranges that touch are concatenated (the cells between are empty):
                     // consecutive cells of a stencil row become one range, and one loop
@@ -394,6 +404,9 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                         for (int a = 0; a < D; ++a) image[nr][a] = im[a];
                         range[nr++] = {b, e};
                     }
+                };
+                auto add_cell = [&](std::size_t nc, const Vec<D>& im) {
+                    add_range(cell_start_[nc], cell_start_[nc + 1], im);
                 };
                 std::array<int, D> cc; // this cell's coordinates
                 {
@@ -426,25 +439,36 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     seg_start[nr][1] = e;
                     range[nr++] = {b, e};
                 };
+                // A whole row of consecutive cells, nc first: what add_segment_cell gives
+                // cell by cell (a row never continues the segment before it: that one
+                // ends at an x offset of reach, or is the cell's own row, which is first)
+                auto add_segment_row = [&](std::size_t nc, const StencilRow& t, const Vec<D>& im) {
+                    const int cells = t.x1 - t.x0 + 1;
+                    for (int k = 0; k <= cells; ++k) seg_start[nr][k] = cell_start_[nc + k];
+                    cand += seg_start[nr][cells] - seg_start[nr][0];
+                    for (int a = 0; a < D; ++a) image[nr][a] = im[a];
+                    seg_x[nr] = {t.x0, t.x1};
+                    seg_o[nr] = t.o;
+                    range[nr] = {seg_start[nr][0], seg_start[nr][cells]};
+                    ++nr;
+                    seg_end_cell = nc + static_cast<std::size_t>(cells);
+                };
                 // Each particle scans, of each segment, only the cells its sphere of
                 // r_list reaches (trim_segments below), with half-width cells only: with
                 // cells of r_list (reach 1) that trims a smaller share (a fifth of the
                 // cells in 3D, a tenth in 2D), and ABP in 2D ran 0.94x.
                 const bool trim = reach_ == max_stencil_reach;
                 if (half_stencil_) {
-                    // the cell itself first (each particle scans only the ones after it),
-                    // then the forward cells
-                    if (trim)
-                        add_segment_cell(static_cast<std::size_t>(c), Vec<D>{},
-                                         std::array<int, D>{});
-                    else
-                        add_cell(static_cast<std::size_t>(c), Vec<D>{});
-                    for (const auto& o : forward_) {
-                        std::size_t nc = 0;
+                    // Row by row (stencil_rows_): the axes above 0 give the row's image
+                    // and first cell once; a row that stays inside axis 0 is consecutive
+                    // cells, taken as one piece, and one across its faces goes cell by
+                    // cell as a scan over forward_ would. The ranges are the same.
+                    for (const StencilRow& t : stencil_rows_) {
+                        std::size_t upper = 0; // the row's index on the axes above 0
                         bool inside = true;
                         Vec<D> im{};
-                        for (int a = D - 1; a >= 0; --a) {
-                            int x = cc[a] + o[a];
+                        for (int a = D - 1; a >= 1; --a) {
+                            int x = cc[a] + t.o[a];
                             if (periodic[a]) {
                                 // a neighbour cell across the face lies one box length
                                 // away from where its particles are stored
@@ -458,14 +482,43 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                             } else {
                                 inside = inside && x >= 0 && x < along[a];
                             }
-                            nc = nc * static_cast<std::size_t>(along[a]) +
-                                 static_cast<std::size_t>(x);
+                            upper = upper * static_cast<std::size_t>(along[a]) +
+                                    static_cast<std::size_t>(x);
                         }
                         if (!inside) continue;
-                        if (trim)
-                            add_segment_cell(nc, im, o);
-                        else
-                            add_cell(nc, im);
+                        const int x_first = cc[0] + t.x0, x_last = cc[0] + t.x1;
+                        if (x_first >= 0 && x_last < along[0]) {
+                            const std::size_t nc = upper * static_cast<std::size_t>(along[0]) +
+                                                   static_cast<std::size_t>(x_first);
+                            if (trim)
+                                add_segment_row(nc, t, im);
+                            else
+                                add_range(cell_start_[nc], cell_start_[nc + (t.x1 - t.x0) + 1], im);
+                            continue;
+                        }
+                        for (int dx = t.x0; dx <= t.x1; ++dx) {
+                            int x = cc[0] + dx;
+                            Vec<D> imx = im;
+                            if (periodic[0]) {
+                                if (x < 0) {
+                                    x += along[0];
+                                    imx[0] = length[0];
+                                } else if (x >= along[0]) {
+                                    x -= along[0];
+                                    imx[0] = -length[0];
+                                }
+                            } else if (x < 0 || x >= along[0]) {
+                                continue;
+                            }
+                            const std::size_t nc = upper * static_cast<std::size_t>(along[0]) +
+                                                   static_cast<std::size_t>(x);
+                            std::array<int, D> o = t.o;
+                            o[0] = dx;
+                            if (trim)
+                                add_segment_cell(nc, imx, o);
+                            else
+                                add_cell(nc, imx);
+                        }
                     }
                 } else {
                     cells_.for_each_cell_within(
@@ -488,25 +541,28 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                 auto trim_segments = [&](const Vec<D>& ri) {
                     // (branch-free: the branches of a first version mispredicted so often
                     // that they cost what the shorter scans saved)
-                    double gap2[D][2 * max_stencil_reach + 1];
+                    // (trimming runs at reach 2 only: a constant, so that the loops over
+                    // offsets unroll; they took a third of the build's instructions)
+                    constexpr int R = max_stencil_reach;
+                    double gap2[D][2 * R + 1];
                     for (int a = 0; a < D; ++a) {
                         const double u = ri[a] - (box_.lo(a) + cc[a] * cell_width[a]);
-                        for (int d = -reach_; d <= reach_; ++d) {
+                        for (int d = -R; d <= R; ++d) {
                             const double g =
                                 CellList<D>::gap_to_cell(u, cell_width[a], d, trim_margin);
-                            gap2[a][reach_ + d] = g * g;
+                            gap2[a][R + d] = g * g;
                         }
                     }
                     for (int r = 0; r < nr; ++r) {
                         double across = 0.0;
-                        for (int a = 1; a < D; ++a) across += gap2[a][seg_o[r][a] + reach_];
+                        for (int a = 1; a < D; ++a) across += gap2[a][seg_o[r][a] + R];
                         const double left = rl2 - across;
                         // the x offsets reached form [-behind, ahead] (the gaps grow with
                         // the offset's size); none where left <= 0
                         int behind = 0, ahead = 0;
-                        for (int d = 1; d <= reach_; ++d) {
-                            behind += gap2[0][reach_ - d] < left;
-                            ahead += gap2[0][reach_ + d] < left;
+                        for (int d = 1; d <= R; ++d) {
+                            behind += gap2[0][R - d] < left;
+                            ahead += gap2[0][R + d] < left;
                         }
                         const int x0 = seg_x[r][0], x1 = seg_x[r][1];
                         const int lo = std::min(std::max(x0, -behind), x1 + 1);

@@ -179,6 +179,15 @@ template <int D> class NeighborList {
     // neighbours of higher index.
     bool half_stencil_ = false;
     std::vector<std::array<int, D>> forward_;
+    // The same half stencil as rows along axis 0: the cell itself and the forward cells
+    // at x offsets x0 .. x1 and offsets o on the other axes (o[0] = x0), in forward_'s
+    // order. Away from the faces of axis 0 a row's cells are consecutive, so a build
+    // sets up a row with one index computation instead of one per cell.
+    struct StencilRow {
+        int x0, x1;
+        std::array<int, D> o;
+    };
+    std::vector<StencilRow> stencil_rows_;
     void set_grid(int reach);
     // The colour blocks' width in cells for k colours per axis (set_grid).
     int choose_block_width(int k, int reach) const;
