@@ -85,7 +85,9 @@
 #     rounding for the first tens of steps, then diverge (chaos); thermodynamics agree;
 #   * Langevin (wca2d): LAMMPS fix nve + fix langevin (damp 1 = m / gamma, uniform
 #     noise of the right variance, its own generator); pedesis BAOAB with Gaussian
-#     Philox noise: equal in distribution, O(dt) differences in the integrator;
+#     Philox noise (its default), or with PEDESIS_NOISE=uniform uniform Philox noise of
+#     the same variance, LAMMPS's kind: equal in distribution, O(dt) differences in the
+#     integrator;
 #   * abp: LAMMPS fix brownian/sphere (rng gaussian) + propel/self dipole + the harmonic
 #     force tabulated (pair_style table linear 2000); pedesis brownian +
 #     brownian_rotation + harmonic (exact) + self_propulsion: equal in distribution.
@@ -117,6 +119,9 @@
 #   LMP            LAMMPS for wca2d, wca3d, lj3d                    [lmp]
 #   LMP_BROWNIAN   LAMMPS with BROWNIAN and DIPOLE, for abp         [/work/peers/lammps-build/lmp]
 #   LJ_LAMMPS_NEIGH  lj3d's LAMMPS list rule: inlj (every 20, no check) or check  [inlj]
+#   PEDESIS_NOISE  gaussian, or uniform: pedesis's brownian and langevin get
+#                  uniform_noise = true (wca2d, abp), the noise LAMMPS' fix langevin
+#                  draws (and fix brownian with rng uniform): equal physics  [gaussian]
 #   SCRATCH        scratch directory outside the repository (created; its
 #                  per-system subdirectories are replaced)          [mktemp -d]
 #   KEEP_SCRATCH   1 = keep the scratch directory (data, JSON, configs, logs)
@@ -141,6 +146,7 @@ PEDESIS=${PEDESIS:-$repo_root/build/pedesis}
 LMP=${LMP:-lmp}
 LMP_BROWNIAN=${LMP_BROWNIAN:-/work/peers/lammps-build/lmp}
 LJ_LAMMPS_NEIGH=${LJ_LAMMPS_NEIGH:-inlj}
+PEDESIS_NOISE=${PEDESIS_NOISE:-gaussian}
 SCRATCH=${SCRATCH:-}
 KEEP_SCRATCH=${KEEP_SCRATCH:-0}
 RESULTS=${RESULTS:-}
@@ -174,6 +180,8 @@ WARMUP=$((10#$WARMUP))
 TOTAL=$((WARMUP + STEPS))
 [[ $LJ_LAMMPS_NEIGH == inlj || $LJ_LAMMPS_NEIGH == check ]] ||
     die "LJ_LAMMPS_NEIGH must be inlj or check (got '$LJ_LAMMPS_NEIGH')"
+[[ $PEDESIS_NOISE == gaussian || $PEDESIS_NOISE == uniform ]] ||
+    die "PEDESIS_NOISE must be gaussian or uniform (got '$PEDESIS_NOISE')"
 read -r -a systems <<<"$SYSTEMS"
 ((${#systems[@]} >= 1)) || die "SYSTEMS is empty"
 for s in "${systems[@]}"; do
@@ -257,7 +265,7 @@ for var in "${!LMP_OK[@]}"; do
     printf '%-10s %s\n' "$var:" "$(lmp_desc "${LMP_OK[$var]}")"
 done
 echo "pedesis:   $PEDESIS @ $ped_rev$ped_dirty${ped_flags:+, $ped_flags}"
-echo "runs:      systems: ${systems[*]}; $PAIRS pair(s) each (LAMMPS, then pedesis); $WARMUP untimed + $STEPS timed steps"
+echo "runs:      systems: ${systems[*]}; $PAIRS pair(s) each (LAMMPS, then pedesis); $WARMUP untimed + $STEPS timed steps; pedesis noise: $PEDESIS_NOISE"
 echo "           rates: particle-steps per wall second of each code's own timed window; cpu: user + sys"
 echo "           of the whole process(es); RSS: maximum resident set size / N"
 echo
@@ -328,6 +336,15 @@ for s in "${systems[@]}"; do
     set_key "$dir/timed.toml" file "\"$s.json\""
     set_key "$dir/timed.toml" steps "$TOTAL"
     set_key "$dir/timed.toml" log_every "$TOTAL"
+    if [[ $PEDESIS_NOISE == uniform ]]; then
+        # after the friction line of the brownian or langevin table (brownian_rotation
+        # keeps Gaussian noise)
+        awk '/^name = "(brownian|langevin)"/ { noisy = 1 } /^name = / && !/"(brownian|langevin)"/ { noisy = 0 }
+             { print } noisy && /^gamma = / { print "uniform_noise = true"; noisy = 0; n++ }
+             END { exit n == 1 ? 0 : 1 }' "$dir/timed.toml" >"$dir/timed.noise" ||
+            die "$s: PEDESIS_NOISE=uniform needs one brownian or langevin [[integrator]]"
+        mv -- "$dir/timed.noise" "$dir/timed.toml"
+    fi
     if ((WARMUP > 0)); then
         cp -- "$dir/timed.toml" "$dir/warm.toml"
         set_key "$dir/warm.toml" steps "$WARMUP"

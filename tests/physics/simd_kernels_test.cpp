@@ -249,7 +249,38 @@ template <int Per> void check_normals(SimdLevel level, int m) {
             << ", number " << q;
 }
 
+// The uniform noise (batch_normals.hpp) from the same draws: sqrt 3 ((2u - 1) - 2^-53).
+template <int Per> void check_uniform_noise(SimdLevel level, int m) {
+    const std::vector<std::uint32_t> tags = batch_tags();
+    const std::uint64_t seed = 0x243f6a8885a308d3ull;
+    const std::uint32_t step = 11;
+    std::vector<double> z(detail::noise_batch * Per, -1.0);
+    detail::batch_noise<Per>(detail::NoiseShape::uniform, seed, RngStream::thermostat, tags.data(),
+                             step, m, z.data());
+    for (int k = 0; k < m; ++k) {
+        CounterRng rng(seed, RngStream::thermostat, tags[static_cast<std::size_t>(k)], step);
+        for (int c = 0; c < Per; ++c) {
+            const double want = 1.7320508075688772 * ((2.0 * rng.uniform() - 1.0) - 0x1p-53);
+            ASSERT_EQ(z[static_cast<std::size_t>(k * Per + c)], want)
+                << simd_name(level) << ": " << Per << " per particle, batch of " << m
+                << ", particle " << k << ", component " << c;
+        }
+    }
+}
+
 } // namespace
+
+TEST(SimdKernels, EverySetDrawsTheSameUniformNoise) {
+    KernelSetGuard guard;
+    for (SimdLevel level : available_simd_levels()) {
+        set_simd_level(level);
+        for (int m = 0; m <= detail::noise_batch; ++m) {
+            check_uniform_noise<1>(level, m);
+            check_uniform_noise<2>(level, m);
+            check_uniform_noise<3>(level, m);
+        }
+    }
+}
 
 TEST(SimdKernels, EverySetDrawsTheNumbersOfCounterRng) {
     KernelSetGuard guard;

@@ -143,6 +143,30 @@ TEST(GpuModel, RefusesTwoPairForcesAndTwoAligners) {
     EXPECT_THROW(gpu_model(s, f), InputError);
 }
 
+// The device kernels draw Gaussian noise: a config with uniform_noise is refused, by name.
+TEST(GpuModel, RefusesUniformNoise) {
+    auto s = test::random_soft_system<2>(4, 30.0, 1.0, 1);
+    for (bool langevin : {false, true}) {
+        Evolver<2> e(s, 0.5);
+        if (langevin)
+            e.add_integrator(
+                std::make_unique<LangevinIntegrator<2>>(1.0, 1.0, 1, detail::NoiseShape::uniform));
+        else
+            e.add_integrator(
+                std::make_unique<BrownianIntegrator<2>>(1.0, 1.0, 1, detail::NoiseShape::uniform));
+        try {
+            gpu_model(s, e);
+            FAIL() << "uniform noise was accepted";
+        } catch (const InputError& err) {
+            EXPECT_NE(std::string(err.what()).find("uniform_noise"), std::string::npos)
+                << err.what();
+        }
+        Evolver<2> f(s, 0.5);
+        f.add_integrator(std::make_unique<BrownianIntegrator<2>>(1.0, 1.0, 1));
+        EXPECT_NO_THROW(gpu_model(s, f));
+    }
+}
+
 // Without a GPU (or without CUDA in the build) asking for one is an input error that says
 // why; with one, the stepper is made.
 TEST(GpuStepper, SaysWhyNoGpuCanRun) {

@@ -38,6 +38,13 @@ bool read_pair(const ForceTerm<D>& f, std::size_t ns, std::vector<Pair>& table) 
     return true;
 }
 
+// The device kernels draw Gaussian noise only.
+void gaussian_noise_only(detail::NoiseShape shape, const char* integrator) {
+    if (shape != detail::NoiseShape::gaussian)
+        throw InputError(std::string("device = \"gpu\" draws Gaussian noise only: ") + integrator +
+                         "'s uniform_noise runs on the CPU (device = \"cpu\")");
+}
+
 } // namespace
 
 template <int D> gpu::Model gpu_model(const SoftState<D>& s, Evolver<D>& evolver) {
@@ -97,9 +104,11 @@ template <int D> gpu::Model gpu_model(const SoftState<D>& s, Evolver<D>& evolver
         if (const auto* b = dynamic_cast<const BrownianIntegrator<D>*>(i.get())) {
             mover = gpu::Mover::brownian;
             m.seed = b->seed();
+            gaussian_noise_only(b->noise_shape(), "brownian");
         } else if (const auto* l = dynamic_cast<const LangevinIntegrator<D>*>(i.get())) {
             mover = gpu::Mover::langevin;
             m.seed = l->seed();
+            gaussian_noise_only(l->noise_shape(), "langevin");
         } else if (dynamic_cast<const VelocityVerletIntegrator<D>*>(i.get())) {
             mover = gpu::Mover::nve;
         } else if (const auto* r = dynamic_cast<const BrownianRotationIntegrator<D>*>(i.get())) {

@@ -7,6 +7,8 @@
 //                      by s = sqrt(1 - D_r dt / 3) for second order: core/sphere_rotation.hpp)
 // with D = T / gamma. The noise of particle i at step s is drawn from Philox keyed by
 // (seed, stream, tag, s): the trajectory does not depend on thread count or storage order.
+// xi is a standard normal; brownian's, with uniform_noise, a uniform variate of the same
+// variance (batch_normals.hpp).
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
 #include "pedesis/core/sphere_rotation.hpp"
@@ -54,8 +56,9 @@ struct OverdampedCoefficients {
 
 template <int D> class BrownianIntegrator final : public Integrator<D> {
   public:
-    BrownianIntegrator(PerSpecies T, PerSpecies gamma, std::uint64_t seed)
-        : T_(std::move(T)), gamma_(std::move(gamma)), seed_(seed) {
+    BrownianIntegrator(PerSpecies T, PerSpecies gamma, std::uint64_t seed,
+                       detail::NoiseShape noise = detail::NoiseShape::gaussian)
+        : T_(std::move(T)), gamma_(std::move(gamma)), seed_(seed), noise_(noise) {
         detail::check_overdamped(T_, gamma_, "brownian");
     }
     std::string name() const override { return "brownian"; }
@@ -66,6 +69,7 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }
     std::uint64_t seed() const { return seed_; }
+    detail::NoiseShape noise_shape() const { return noise_; }
     // From the next step on (the coefficients are made from T every step).
     void set_temperature(PerSpecies T) {
         detail::check_overdamped(T, gamma_, "brownian");
@@ -90,8 +94,8 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
             const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
             double z[B * D];
             if (noisy)
-                detail::batch_normals<D>(seed_, RngStream::thermostat, s.p.tag.data() + first, step,
-                                         m, z);
+                detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, s.p.tag.data() + first,
+                                       step, m, z);
             for (int k = 0; k < m; ++k) {
                 const std::int64_t i = first + k;
                 Vec<D> move = drift[sp[i]] * s.force[i];
@@ -111,6 +115,7 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
   private:
     PerSpecies T_, gamma_;
     std::uint64_t seed_;
+    detail::NoiseShape noise_;
     detail::OverdampedCoefficients c_;
 };
 

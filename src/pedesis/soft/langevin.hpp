@@ -11,7 +11,9 @@
 // the Maxwell-Boltzmann velocity distribution for any dt, and BAOAB's configurational
 // sampling error is O(dt^2) with a small constant. The noise of particle i at step s is
 // drawn from Philox keyed by (seed, thermostat, tag, s): the trajectory does not depend
-// on thread count or storage order. A particle of infinite mass is a fixed obstacle.
+// on thread count or storage order. xi is a standard normal, or with uniform_noise a
+// uniform variate of the same variance (batch_normals.hpp). A particle of infinite mass
+// is a fixed obstacle.
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
 #include "pedesis/soft/batch_normals.hpp"
@@ -65,8 +67,9 @@ struct LangevinCoefficients {
 
 template <int D> class LangevinIntegrator final : public Integrator<D> {
   public:
-    LangevinIntegrator(PerSpecies T, PerSpecies gamma, std::uint64_t seed)
-        : T_(std::move(T)), gamma_(std::move(gamma)), seed_(seed) {
+    LangevinIntegrator(PerSpecies T, PerSpecies gamma, std::uint64_t seed,
+                       detail::NoiseShape noise = detail::NoiseShape::gaussian)
+        : T_(std::move(T)), gamma_(std::move(gamma)), seed_(seed), noise_(noise) {
         for (double t : T_.values())
             if (!(t >= 0.0 && std::isfinite(t)))
                 throw InputError("langevin: T must be a finite number >= 0");
@@ -83,6 +86,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }
     std::uint64_t seed() const { return seed_; }
+    detail::NoiseShape noise_shape() const { return noise_; }
     // From the next step on (the coefficients are made from T every step).
     void set_temperature(PerSpecies T) {
         for (double t : T.values())
@@ -121,7 +125,8 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
             const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
             double z[B * D];
             if (noisy)
-                detail::batch_normals<D>(seed_, RngStream::thermostat, tag + first, step, m, z);
+                detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, tag + first, step, m,
+                                       z);
             for (int q = 0; q < m; ++q) {
                 const std::int64_t i = first + q;
                 const std::uint16_t k = sp[i];
@@ -161,6 +166,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
   private:
     PerSpecies T_, gamma_;
     std::uint64_t seed_;
+    detail::NoiseShape noise_;
     detail::LangevinCoefficients c_;
 };
 

@@ -53,6 +53,15 @@ bool flag(const PluginSpec& spec, const char* key) {
     return it != spec.flags.end() && it->second;
 }
 
+constexpr const char* uniform_noise_doc =
+    "draw the noise uniform on [-sqrt 3, sqrt 3] (mean 0, variance 1, as LAMMPS' fix "
+    "langevin and fix brownian's default) instead of Gaussian: the same diffusion and "
+    "temperature, cheaper to draw (default false)";
+
+detail::NoiseShape noise_shape(const PluginSpec& spec) {
+    return flag(spec, "uniform_noise") ? detail::NoiseShape::uniform : detail::NoiseShape::gaussian;
+}
+
 PluginInfo row(PluginInfo info, std::pair<AddPlugin<2>, AddPlugin<3>> add) {
     info.add2 = add.first;
     info.add3 = add.second;
@@ -145,11 +154,14 @@ const std::vector<PluginInfo>& plugin_catalogue() {
              "BrownianIntegrator",
              {{"T", required, ParamLimit::non_negative, per_species, "temperature"},
               {"gamma", required, ParamLimit::positive, per_species, "friction coefficient"}},
-             "r += dt F / gamma + sqrt(2 T dt / gamma) xi"},
+             "r += dt F / gamma + sqrt(2 T dt / gamma) xi",
+             false,
+             {{"uniform_noise", uniform_noise_doc}}},
             builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
                                std::uint64_t seed) {
                 e.add_integrator(std::make_unique<BrownianIntegrator<D>>(
-                    plugin_parameter(s, "T", sp), plugin_parameter(s, "gamma", sp), seed));
+                    plugin_parameter(s, "T", sp), plugin_parameter(s, "gamma", sp), seed,
+                    noise_shape(s)));
             })),
         row({PluginKind::integrator,
              "brownian_rotation",
@@ -170,11 +182,14 @@ const std::vector<PluginInfo>& plugin_catalogue() {
              {{"T", required, ParamLimit::non_negative, per_species, "temperature"},
               {"gamma", required, ParamLimit::positive, per_species,
                "friction coefficient (force -gamma v)"}},
-             "m dv = F dt - gamma v dt + sqrt(2 gamma T) dW (BAOAB splitting)"},
+             "m dv = F dt - gamma v dt + sqrt(2 gamma T) dW (BAOAB splitting)",
+             false,
+             {{"uniform_noise", uniform_noise_doc}}},
             builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>& sp,
                                std::uint64_t seed) {
                 e.add_integrator(std::make_unique<LangevinIntegrator<D>>(
-                    plugin_parameter(s, "T", sp), plugin_parameter(s, "gamma", sp), seed));
+                    plugin_parameter(s, "T", sp), plugin_parameter(s, "gamma", sp), seed,
+                    noise_shape(s)));
             })),
         row({PluginKind::integrator, "nve", "NVEIntegrator", {}, "velocity Verlet: m dv/dt = F"},
             builders([]<int D>(Evolver<D>& e, const PluginSpec&, const std::vector<Species>&,
