@@ -2,9 +2,11 @@
 // The neighbour-list build's inner loop with the half stencil, per kernel set
 // (core/simd_level.hpp): a particle's candidates, range by range, and which of them lie
 // within the list range. The SSE2 set tests one candidate at a time; the AVX2 set tests
-// four per instruction and packs the hits' indices with one byte shuffle. Both compute
-// r^2 by the same operations in the same order, without fused multiply-adds (the AVX2
-// function is not compiled with FMA), so every set lists the same pairs in the same order.
+// four per instruction and packs the hits' indices with one byte shuffle; the AVX-512 set
+// eight, its ranges' ends under masks. All compute r^2 by the same operations in the same
+// order, without fused multiply-adds (the AVX2 function is not compiled with FMA, the
+// AVX-512 one names each operation's rounding), so every set lists the same pairs in the
+// same order.
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/core/vec.hpp"
 #include "pedesis/spatial/neighbor_list.hpp"
@@ -126,6 +128,85 @@ template <int D>
     }
     return w;
 }
+
+// The AVX-512 set: eight candidates per instruction. A range's last, partial group is
+// loaded under a mask (lanes past the range are neither read nor compared), so no
+// candidate is left to a scalar loop, whose varying trip count mispredicted at the end
+// of every range; the hits' indices are packed in order by a compress. r^2 is computed
+// with the rounding named on each operation, which GCC cannot fuse into multiply-adds:
+// the same bits as the other sets.
+inline constexpr std::uint32_t near_row_slack = 7; // entries a scan may write past its row
+
+template <int D>
+[[gnu::target("avx512f,avx512vl,avx512dq,avx512bw,avx2")]] std::size_t
+near_row_avx512(const NearRowInput<D>& in, std::uint32_t first, const Vec<D>& ri,
+                std::uint32_t* dst) {
+    constexpr int rn = _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC;
+    const __m512d range2 = _mm512_set1_pd(in.range2);
+    // de-interleaving permutes: lane l of axis a is double D l + a of the group
+    const __m512i x_from = _mm512_set_epi64(7 * D, 6 * D, 5 * D, 4 * D, 3 * D, 2 * D, D, 0);
+    const __m512i one = _mm512_set1_epi64(1);
+    // (the zero-masking forms: GCC 12's plain ones start from an undefined vector, which
+    // -Wmaybe-uninitialized reports)
+    const __mmask8 all = 0xFF;
+    std::size_t w = 0;
+    for (int r = 0; r < in.ranges; ++r) {
+        Vec<D> rs = ri;
+        for (int a = 0; a < D; ++a) rs[a] += in.image[r][a];
+        const std::uint32_t end = in.range[r][1];
+        for (std::uint32_t k = r == 0 ? first : in.range[r][0]; k < end; k += 8) {
+            const unsigned left = end - k < 8 ? end - k : 8;
+            const auto lanes = static_cast<__mmask8>((1u << left) - 1u);
+            const double* p = in.ref[k].c.data();
+            const unsigned doubles = D * left; // of this group, in memory order
+            // (the intrinsics stay in this function's body: a lambda would not have its
+            // target)
+            auto belong = [doubles](unsigned from) { // which of doubles from..from+7 do
+                const unsigned n = doubles > from ? doubles - from : 0;
+                return static_cast<__mmask8>(n >= 8 ? 0xFFu : (1u << n) - 1u);
+            };
+            __m512d r2 = _mm512_setzero_pd();
+            if constexpr (D == 3) {
+                const __m512d a = _mm512_maskz_loadu_pd(belong(0), p);
+                const __m512d b = _mm512_maskz_loadu_pd(belong(8), p + 8);
+                const __m512d c = _mm512_maskz_loadu_pd(belong(16), p + 16);
+                // lanes 0..5 of an axis from a and b (indices < 24 < 16 + 8), then lanes 6, 7
+                // from c: x = 0 3 6 9 12 15 | 18 21, y = 1 4 ..., z = 2 5 ...
+                // (permutex2var reads an index's low 4 bits, permutexvar its low 3: the
+                // same index vector serves both, each lane taking the right source)
+                __m512i idx = x_from;
+                for (int axis = 0; axis < 3; ++axis) {
+                    __m512d v = _mm512_permutex2var_pd(a, idx, b);
+                    v = _mm512_mask_permutexvar_pd(
+                        v, _mm512_cmpge_epi64_mask(idx, _mm512_set1_epi64(16)), idx, c);
+                    const __m512d d =
+                        _mm512_maskz_sub_round_pd(all, _mm512_set1_pd(rs[axis]), v, rn);
+                    const __m512d dd = _mm512_maskz_mul_round_pd(all, d, d, rn);
+                    r2 = axis == 0 ? dd : _mm512_maskz_add_round_pd(all, r2, dd, rn);
+                    idx = _mm512_add_epi64(idx, one);
+                }
+            } else {
+                const __m512d a = _mm512_maskz_loadu_pd(belong(0), p);
+                const __m512d b = _mm512_maskz_loadu_pd(belong(8), p + 8);
+                __m512i idx = x_from;
+                for (int axis = 0; axis < 2; ++axis) {
+                    const __m512d v = _mm512_permutex2var_pd(a, idx, b);
+                    const __m512d d =
+                        _mm512_maskz_sub_round_pd(all, _mm512_set1_pd(rs[axis]), v, rn);
+                    const __m512d dd = _mm512_maskz_mul_round_pd(all, d, d, rn);
+                    r2 = axis == 0 ? dd : _mm512_maskz_add_round_pd(all, r2, dd, rn);
+                    idx = _mm512_add_epi64(idx, one);
+                }
+            }
+            const __mmask8 hits = _mm512_mask_cmp_pd_mask(lanes, r2, range2, _CMP_LT_OQ);
+            const __m256i j = _mm256_maskz_loadu_epi32(lanes, in.idx + k);
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + w),
+                                _mm256_maskz_compress_epi32(hits, j));
+            w += static_cast<unsigned>(__builtin_popcount(hits));
+        }
+    }
+    return w;
+}
 #endif
 
 template <int D>
@@ -134,12 +215,13 @@ std::size_t near_row_scalar_call(const NearRowInput<D>& in, std::uint32_t first,
     return near_row_sse2<D>(in, first, ri, dst);
 }
 
-// The function for the kernel set in use (AVX-512 machines take the AVX2 one).
+// The function for the kernel set in use.
 template <int D>
 auto near_row_for(SimdLevel level)
     -> std::size_t (*)(const NearRowInput<D>&, std::uint32_t, const Vec<D>&, std::uint32_t*) {
 #if PEDESIS_SIMD_DISPATCH
-    if (level != SimdLevel::sse2) return &near_row_avx2<D>;
+    if (level == SimdLevel::avx512) return &near_row_avx512<D>;
+    if (level == SimdLevel::avx2) return &near_row_avx2<D>;
 #endif
     (void)level;
     return &near_row_scalar_call<D>;

@@ -574,7 +574,9 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                     // Branch-free: about a sixth of the candidates hit, at random. Every
                     // candidate is stored and the cursor advances only on a hit; the row
                     // has room for all of them.
-                    std::uint32_t* dst = place_row(cand);
+                    // (the SIMD scans may write a few entries past the row's
+                    // candidates: room for them too)
+                    std::uint32_t* dst = place_row(cand + detail::near_row_slack);
                     const bool stored = dst != nullptr;
                     if (!stored) dst = sink.data();
                     std::size_t w = 0;
@@ -622,15 +624,15 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
         entries_ = total;
         if (!overflow.load()) break;
         // Storage too small (the first build, or the system grew denser). A thread leaves
-        // a chunk only when the next row's candidates (at most max_candidates) do not fit
-        // in what is left of it, so with chunks of at least 4 max_candidates every chunk it
-        // leaves is at least 3/4 used: the pass claims at most 4/3 of the total plus one
-        // unfinished chunk per thread. (Room for the total plus a chunk per thread was
-        // not enough: in a perfect lattice every row has the most candidates, and with
-        // LJ's 2.5 cutoff in in.lj's fcc crystal, 2300 candidates against chunks of 4096
+        // a chunk only when the next row's candidates and the scans' slack (at most
+        // max_candidates + near_row_slack) do not fit in what is left of it, so with chunks
+        // of at least 4 times that every chunk it leaves is at least 3/4 used: the pass claims at
+        // most 4/3 of the total plus one unfinished chunk per thread. (Room for the total plus a
+        // chunk per thread was not enough: in a perfect lattice every row has the most candidates,
+        // and with LJ's 2.5 cutoff in in.lj's fcc crystal, 2300 candidates against chunks of 4096
         // left half of every chunk empty, so the pass overflowed again, the same
         // capacity was computed from the same total, and the build repeated for ever.)
-        chunk_ = std::max(chunk_entries, 4 * max_candidates);
+        chunk_ = std::max(chunk_entries, 4 * (max_candidates + detail::near_row_slack));
         capacity_ =
             grow(total + total / 3 + static_cast<std::size_t>(omp_get_max_threads() + 1) * chunk_);
         neighbors_.reset(); // free first so that old and new never coexist
