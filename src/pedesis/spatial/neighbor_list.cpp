@@ -541,8 +541,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                 auto trim_segments = [&](const Vec<D>& ri) {
                     // (branch-free: the branches of a first version mispredicted so often
                     // that they cost what the shorter scans saved)
-                    // (trimming runs at reach 2 only: a constant, so that the loops over
-                    // offsets unroll; they took a third of the build's instructions)
+                    // (trimming runs at reach 2 only)
                     constexpr int R = max_stencil_reach;
                     double gap2[D][2 * R + 1];
                     for (int a = 0; a < D; ++a) {
