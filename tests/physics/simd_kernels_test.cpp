@@ -14,11 +14,14 @@
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/pair_force.hpp"
 #include "pedesis/soft/pair_potentials.hpp"
+#include "pedesis/spatial/block_moves.hpp"
 #include "pedesis/spatial/neighbor_list.hpp"
 
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -269,6 +272,87 @@ template <int Per> void check_uniform_noise(SimdLevel level, int m) {
 }
 
 } // namespace
+
+// The rebuild check's moves (spatial/block_moves.hpp) by Box::minimum_image and norm2,
+// one particle at a time: what every set must give.
+template <int D>
+detail::BlockMoves reference_moves(const Box<D>& box, const std::vector<Vec<D>>& pos,
+                                   const std::vector<Vec<D>>& home, std::size_t first,
+                                   std::size_t last, double skin) {
+    detail::BlockMoves m;
+    for (std::size_t k = first; k < last; ++k) {
+        const double d2 = norm2(box.minimum_image(pos[k] - home[k]));
+        m.far = m.far || !(d2 <= skin * skin);
+        if (d2 > m.most2) m.most2 = d2;
+        m.movers += d2 > 0.25 * skin * skin ? 1 : 0;
+    }
+    return m;
+}
+
+// Moves across periodic faces both ways, moves of exactly skin/2 and skin along an axis,
+// moves beside walls, and blocks of every length from 0 to 13 at every offset.
+template <int D> void check_block_moves(const std::array<bool, D>& periodic, bool with_nan) {
+    const Box<D> box(Vec<D>::filled(8.0), periodic);
+    const double skin = 0.5;
+    std::vector<Vec<D>> home, pos;
+    for (int k = 0; k < 40; ++k) {
+        Vec<D> h, p;
+        for (int a = 0; a < D; ++a) {
+            h[a] = -3.9 + 0.19 * ((k * (a + 3)) % 41);
+            p[a] = h[a];
+        }
+        switch (k % 5) {
+        case 0: // across the face: home just below +L/2, now just above -L/2
+            h[0] = 3.99;
+            p[0] = -3.99;
+            break;
+        case 1: // the other way, on the last axis
+            h[D - 1] = -3.95;
+            p[D - 1] = 3.97;
+            break;
+        case 2: // exactly skin/2, then exactly the skin, along axis 0
+            p[0] = h[0] + (k % 10 == 2 ? 0.5 * skin : skin);
+            break;
+        case 3: // a small move on every axis
+            for (int a = 0; a < D; ++a) p[a] += 0.1 * (a + 1) * (k % 2 ? 1 : -1);
+            break;
+        default: // beyond the skin
+            p[1] -= 0.6;
+        }
+        home.push_back(h);
+        pos.push_back(p);
+    }
+    if (with_nan) pos[17][0] = std::numeric_limits<double>::quiet_NaN();
+    detail::BlockMovesInput<D> in{pos.data(), home.data(), {}, {}, skin * skin, 0.25 * skin * skin};
+    for (int a = 0; a < D; ++a) {
+        in.half[a] = periodic[a] ? box.hi(a) : std::numeric_limits<double>::infinity();
+        in.length[a] = periodic[a] ? box.length(a) : 0.0;
+    }
+    for (SimdLevel level : available_simd_levels()) {
+        const auto moves = detail::block_moves_for<D>(level);
+        for (std::size_t first = 0; first < 8; ++first)
+            for (std::size_t last = first; last <= first + 13 && last <= pos.size(); ++last) {
+                const auto got = moves(in, first, last);
+                const auto want = reference_moves(box, pos, home, first, last, skin);
+                const std::string where = std::string(simd_name(level)) + " " + std::to_string(D) +
+                                          "D particles " + std::to_string(first) + ".." +
+                                          std::to_string(last);
+                EXPECT_EQ(got.far, want.far) << where;
+                EXPECT_EQ(got.movers, want.movers) << where;
+                // (a NaN move is left out of the maximum by all)
+                EXPECT_EQ(got.most2, want.most2) << where;
+            }
+    }
+}
+
+TEST(SimdKernels, EverySetFindsTheSameMovesSinceTheBuild) {
+    check_block_moves<2>({true, true}, false);
+    check_block_moves<2>({false, true}, false);
+    check_block_moves<3>({true, true, true}, false);
+    check_block_moves<3>({true, false, true}, false);
+    check_block_moves<3>({true, true, true}, true);
+    check_block_moves<2>({true, true}, true);
+}
 
 TEST(SimdKernels, EverySetDrawsTheSameUniformNoise) {
     KernelSetGuard guard;

@@ -3,6 +3,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/core/stage.hpp"
+#include "pedesis/spatial/block_moves.hpp"
 #include "pedesis/spatial/near_rows.hpp"
 
 #include <fmt/format.h>
@@ -671,25 +672,22 @@ template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& 
     bool too_far = false;
     double most2 = 0.0;
     std::size_t movers = 0;
+    detail::BlockMovesInput<D> in{pos.data(), home_.data(), {}, {}, skin2, half2};
+    for (int a = 0; a < D; ++a) {
+        const bool periodic = box_.periodic(a);
+        in.half[a] = periodic ? box_.hi(a) : std::numeric_limits<double>::infinity();
+        in.length[a] = periodic ? box_.length(a) : 0.0;
+    }
+    const auto block_moves = detail::block_moves_for<D>(simd_level());
 #pragma omp parallel for schedule(static) reduction(|| : too_far) reduction(max : most2) \
     reduction(+ : movers) if (static_cast<std::int64_t>(n_) >= parallel_min)
     for (std::int64_t b = 0; b < sb; ++b) {
         const std::size_t first = static_cast<std::size_t>(b) * mover_block;
-        const std::size_t last = std::min(n_, first + mover_block);
-        bool far = false;
-        double m2 = 0.0;
-        std::size_t count = 0;
-        for (std::size_t k = first; k < last; ++k) {
-            const double d2 = norm2(box_.minimum_image(pos[k] - home_[k]));
-            // written as !(<=) so that a NaN position asks for a rebuild (which reports it)
-            far = far || !(d2 <= skin2);
-            m2 = std::max(m2, d2);
-            count += d2 > half2 ? 1 : 0;
-        }
-        too_far = too_far || far;
-        most2 = std::max(most2, m2);
-        movers += count;
-        mover_blocks_[static_cast<std::size_t>(b)] = count > 0 ? 1 : 0;
+        const detail::BlockMoves m = block_moves(in, first, std::min(n_, first + mover_block));
+        too_far = too_far || m.far;
+        most2 = std::max(most2, m.most2);
+        movers += m.movers;
+        mover_blocks_[static_cast<std::size_t>(b)] = m.movers > 0 ? 1 : 0;
     }
     if (too_far) return true;
     if (movers == 0) return false;
