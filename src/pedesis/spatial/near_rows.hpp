@@ -165,38 +165,23 @@ near_row_avx512(const NearRowInput<D>& in, std::uint32_t first, const Vec<D>& ri
                 const unsigned n = doubles > from ? doubles - from : 0;
                 return static_cast<__mmask8>(n >= 8 ? 0xFFu : (1u << n) - 1u);
             };
+            const __m512d a = _mm512_maskz_loadu_pd(belong(0), p);
+            const __m512d b = _mm512_maskz_loadu_pd(belong(8), p + 8);
+            // 3D: doubles 16..23 (lanes 6 and 7 of x, 5..7 of y and z) lie in c
+            const __m512d c = D == 3 ? _mm512_maskz_loadu_pd(belong(16), p + 16) : a;
             __m512d r2 = _mm512_setzero_pd();
-            if constexpr (D == 3) {
-                const __m512d a = _mm512_maskz_loadu_pd(belong(0), p);
-                const __m512d b = _mm512_maskz_loadu_pd(belong(8), p + 8);
-                const __m512d c = _mm512_maskz_loadu_pd(belong(16), p + 16);
-                // lanes 0..5 of an axis from a and b (indices < 24 < 16 + 8), then lanes 6, 7
-                // from c: x = 0 3 6 9 12 15 | 18 21, y = 1 4 ..., z = 2 5 ...
+            __m512i idx = x_from; // the doubles of axis 0, then 1, 2
+            for (int axis = 0; axis < D; ++axis) {
                 // (permutex2var reads an index's low 4 bits, permutexvar its low 3: the
                 // same index vector serves both, each lane taking the right source)
-                __m512i idx = x_from;
-                for (int axis = 0; axis < 3; ++axis) {
-                    __m512d v = _mm512_permutex2var_pd(a, idx, b);
+                __m512d v = _mm512_permutex2var_pd(a, idx, b);
+                if constexpr (D == 3)
                     v = _mm512_mask_permutexvar_pd(
                         v, _mm512_cmpge_epi64_mask(idx, _mm512_set1_epi64(16)), idx, c);
-                    const __m512d d =
-                        _mm512_maskz_sub_round_pd(all, _mm512_set1_pd(rs[axis]), v, rn);
-                    const __m512d dd = _mm512_maskz_mul_round_pd(all, d, d, rn);
-                    r2 = axis == 0 ? dd : _mm512_maskz_add_round_pd(all, r2, dd, rn);
-                    idx = _mm512_add_epi64(idx, one);
-                }
-            } else {
-                const __m512d a = _mm512_maskz_loadu_pd(belong(0), p);
-                const __m512d b = _mm512_maskz_loadu_pd(belong(8), p + 8);
-                __m512i idx = x_from;
-                for (int axis = 0; axis < 2; ++axis) {
-                    const __m512d v = _mm512_permutex2var_pd(a, idx, b);
-                    const __m512d d =
-                        _mm512_maskz_sub_round_pd(all, _mm512_set1_pd(rs[axis]), v, rn);
-                    const __m512d dd = _mm512_maskz_mul_round_pd(all, d, d, rn);
-                    r2 = axis == 0 ? dd : _mm512_maskz_add_round_pd(all, r2, dd, rn);
-                    idx = _mm512_add_epi64(idx, one);
-                }
+                const __m512d d = _mm512_maskz_sub_round_pd(all, _mm512_set1_pd(rs[axis]), v, rn);
+                const __m512d dd = _mm512_maskz_mul_round_pd(all, d, d, rn);
+                r2 = axis == 0 ? dd : _mm512_maskz_add_round_pd(all, r2, dd, rn);
+                idx = _mm512_add_epi64(idx, one);
             }
             const __mmask8 hits = _mm512_mask_cmp_pd_mask(lanes, r2, range2, _CMP_LT_OQ);
             const __m256i j = _mm256_maskz_loadu_epi32(lanes, in.idx + k);
