@@ -7,6 +7,7 @@
 // set.
 #include "support/pair_cases.hpp"
 
+#include "pedesis/core/inside_box.hpp"
 #include "pedesis/core/noise_log.hpp"
 #include "pedesis/core/philox_batch.hpp"
 #include "pedesis/core/simd_level.hpp"
@@ -24,6 +25,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace pedesis;
@@ -352,6 +354,57 @@ TEST(SimdKernels, EverySetFindsTheSameMovesSinceTheBuild) {
     check_block_moves<3>({true, false, true}, false);
     check_block_moves<3>({true, true, true}, true);
     check_block_moves<2>({true, true}, true);
+}
+
+// The wrap's test (Evolver::wrap_all): particles inside, on the lower bound (inside) and
+// on the upper one (outside), beyond either, NaN, and an axis between walls (never
+// outside); one odd particle at each place of blocks of every length from 0 to 13, so
+// that the vector lanes and the scalar tail are each the one that must see it.
+template <int D> void check_all_inside(const std::array<bool, D>& periodic) {
+    detail::BoxBounds<D> b;
+    for (int a = 0; a < D; ++a) {
+        b.lo[a] = periodic[a] ? -4.0 : -std::numeric_limits<double>::infinity();
+        b.hi[a] = periodic[a] ? 4.0 : std::numeric_limits<double>::infinity();
+    }
+    std::vector<Vec<D>> inside;
+    for (int k = 0; k < 24; ++k) {
+        Vec<D> r;
+        for (int a = 0; a < D; ++a) r[a] = -3.9 + 0.33 * ((k * (a + 5)) % 24);
+        if (k % 7 == 3) r[D - 1] = -4.0; // exactly on the lower bound: inside
+        inside.push_back(r);
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    // (axis, value, outside when that axis is periodic)
+    const std::vector<std::tuple<int, double, bool>> odd = {
+        {0, 4.0, true},        {D - 1, 4.0, true}, {1, -4.0000001, true}, {0, 1e300, true},
+        {D - 1, -1e300, true}, {1, nan, true},     {0, 3.9999999, false}};
+    for (SimdLevel level : available_simd_levels()) {
+        const auto all_inside = detail::all_inside_for<D>(level);
+        for (std::size_t first = 0; first < 4; ++first)
+            for (std::size_t last = first; last <= first + 13; ++last) {
+                const std::string where = std::string(simd_name(level)) + " " + std::to_string(D) +
+                                          "D particles " + std::to_string(first) + ".." +
+                                          std::to_string(last);
+                EXPECT_TRUE(all_inside(b, inside.data(), first, last)) << where;
+                for (const auto& [axis, value, out] : odd)
+                    for (std::size_t at = first; at < last; ++at) {
+                        std::vector<Vec<D>> pos = inside;
+                        pos[at][axis] = value;
+                        // NaN is outside on any axis: not inside [lo, hi), walls or not
+                        const bool want = !(std::isnan(value) || (out && periodic[axis]));
+                        EXPECT_EQ(all_inside(b, pos.data(), first, last), want)
+                            << where << ", particle " << at << " at " << value << " on axis "
+                            << axis;
+                    }
+            }
+    }
+}
+
+TEST(SimdKernels, EverySetFindsTheParticlesOutsideTheBox) {
+    check_all_inside<2>({true, true});
+    check_all_inside<2>({true, false});
+    check_all_inside<3>({true, true, true});
+    check_all_inside<3>({false, true, true});
 }
 
 TEST(SimdKernels, EverySetDrawsTheSameUniformNoise) {

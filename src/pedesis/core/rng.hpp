@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <numbers>
 
-
 namespace pedesis {
 
 enum class RngStream : std::uint32_t {

@@ -1,6 +1,7 @@
 #include "pedesis/soft/evolver.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/inside_box.hpp"
 #include "pedesis/core/interrupt.hpp"
 #include "pedesis/spatial/spatial_sort.hpp"
 
@@ -103,23 +104,29 @@ void Evolver<D>::restore_list(const std::vector<Vec<D>>& reference, std::uint64_
 template <int D> void Evolver<D>::wrap_all() {
     const auto n = static_cast<std::int64_t>(s_.owned());
     // Bounds on the periodic axes only (a walled axis takes +-infinity): most particles
-    // are inside, tested without branches, and only those outside are wrapped and have
-    // their image counted (it was every particle's image read and written each step:
-    // 4% of a 3D WCA step).
-    Vec<D> lo, hi;
+    // are inside, tested block by block without branches (detail::all_inside, SIMD), and
+    // only the blocks with one outside are gone through again, to wrap those and count
+    // their images.
+    detail::BoxBounds<D> bounds;
     for (int a = 0; a < D; ++a) {
         const bool periodic = s_.box.periodic(a);
-        lo[a] = periodic ? s_.box.lo(a) : -std::numeric_limits<double>::infinity();
-        hi[a] = periodic ? s_.box.hi(a) : std::numeric_limits<double>::infinity();
+        bounds.lo[a] = periodic ? s_.box.lo(a) : -std::numeric_limits<double>::infinity();
+        bounds.hi[a] = periodic ? s_.box.hi(a) : std::numeric_limits<double>::infinity();
     }
+    const auto all_inside = detail::all_inside_for<D>(simd_level());
+    constexpr std::int64_t block = 256;
+    const std::int64_t blocks = (n + block - 1) / block;
+    const Vec<D>* pos = s_.p.position.data();
 #pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
-        const Vec<D>& r = s_.p.position[i];
-        bool inside = true;
-        for (int a = 0; a < D; ++a) inside &= (r[a] >= lo[a]) & (r[a] < hi[a]);
-        if (inside) continue;
-        const Vec<D> shift = s_.box.wrap(s_.p.position[i]);
-        for (int a = 0; a < D; ++a) s_.image[i][a] += static_cast<std::int32_t>(shift[a]);
+    for (std::int64_t b = 0; b < blocks; ++b) {
+        const auto first = static_cast<std::size_t>(b * block);
+        const auto last = static_cast<std::size_t>(std::min(n, (b + 1) * block));
+        if (all_inside(bounds, pos, first, last)) continue;
+        for (std::size_t i = first; i < last; ++i) {
+            if (detail::inside_bounds<D>(bounds, pos[i])) continue;
+            const Vec<D> shift = s_.box.wrap(s_.p.position[i]);
+            for (int a = 0; a < D; ++a) s_.image[i][a] += static_cast<std::int32_t>(shift[a]);
+        }
     }
 }
 

@@ -7,6 +7,7 @@
 // instruction. Both compute each move by Box::minimum_image's operations and its square
 // by norm2's, without fused multiply-adds (the AVX2 function is not compiled with FMA),
 // so every set counts the same movers and finds the same largest move.
+#include "pedesis/core/interleaved_axes.hpp"
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/core/vec.hpp"
 
@@ -63,15 +64,11 @@ template <int D>
 [[gnu::target("avx2")]] BlockMoves block_moves_avx2(const BlockMovesInput<D>& in, std::size_t first,
                                                     std::size_t last) {
     static_assert(sizeof(Vec<D>) == D * sizeof(double), "positions must lie packed");
-    // the bounds and lengths in the order the axes come in four interleaved particles
-    // (3D: x y z x | y z x y | z x y z; 2D: x y x y)
     __m256d half[D], length[D];
     for (int v = 0; v < D; ++v) {
         double h[4], l[4];
-        for (int e = 0; e < 4; ++e) {
-            h[e] = in.half[(4 * v + e) % D];
-            l[e] = in.length[(4 * v + e) % D];
-        }
+        interleaved_axes<D>(in.half, v, h);
+        interleaved_axes<D>(in.length, v, l);
         half[v] = _mm256_loadu_pd(h);
         length[v] = _mm256_loadu_pd(l);
     }
