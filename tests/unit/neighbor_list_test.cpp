@@ -371,9 +371,14 @@ TEST(NeighborList, WideBlocksOfOneColourWriteApart) {
     // walls: no rounding, and the last block is narrower
     const Box<2> walled(Vec<2>{{500.0, 400.0}}, {false, false});
     check_colours_write_apart(walled, test::random_positions(walled, 80000, 92, 6), 2.1, 1.0, 8);
-    // 3D, r_list 1.5: 49 cells, 48 for blocks of 3
+    // 3D, r_list 1.5: 49 cells, 48 for blocks of 12 (two blocks of each colour along an
+    // axis; the narrowest blocks, of 2, round to 48 cells too)
     const Box<3> cube(Vec<3>{{75.0, 75.0, 75.0}}, {true, true, true});
-    check_colours_write_apart(cube, test::random_positions(cube, 100000, 93, 6), 1.2, 0.3, 3);
+    check_colours_write_apart(cube, test::random_positions(cube, 100000, 93, 6), 1.2, 0.3, 12);
+    // in.lj's box with the WCA cutoff: r_list 1.42, 23 cells, 20 for blocks of 5 as of 2
+    const Box<3> wca(Vec<3>::filled(33.59192382765015), {true, true, true});
+    check_colours_write_apart(wca, test::random_positions(wca, 32000, 96, 6),
+                              std::pow(2.0, 1.0 / 6.0), 0.3, 5);
     // the widest blocks: 516 cells along, 512 for blocks of 32
     const Box<2> huge(Vec<2>{{1600.0, 1600.0}}, {true, true});
     check_colours_write_apart(huge, test::random_positions(huge, 200000, 95, 6), 2.1, 1.0, 32);
