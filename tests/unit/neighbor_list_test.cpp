@@ -507,6 +507,27 @@ TEST(NeighborList, ZeroSkinRebuildsOnAnyMotion) {
     EXPECT_TRUE(nl.needs_rebuild(pos));
 }
 
+// Free particles in a large box (only one-body forces: r_list is the skin) keep a grid of
+// a few cells per particle, widened cells holding the same pairs, from construction on.
+// (A 3D box 200 wide took 406^3 cells, 256 MB, whatever N.)
+TEST(NeighborList, SparseBoxesKeepTheirGridSmall) {
+    for (bool periodic : {true, false}) {
+        const Box<3> box3(Vec<3>::filled(200.0), {periodic, true, !periodic});
+        const auto pos3 = clustered_positions(box3, 1000, 2.0, 51);
+        check_against_brute_force(box3, pos3, 1e-3, 0.5);
+        NeighborList<3> nl3(box3, 1e-3, 0.5);
+        EXPECT_LT(nl3.memory_bytes(), std::size_t{1} << 20) << "before the first build";
+        nl3.build(pos3);
+        EXPECT_LT(nl3.memory_bytes(), 1000 * 200 + (std::size_t{1} << 20));
+        const Box<2> box2(Vec<2>::filled(4000.0), {true, periodic});
+        const auto pos2 = clustered_positions(box2, 2000, 3.0, 52);
+        check_against_brute_force(box2, pos2, 1e-3, 0.5);
+        NeighborList<2> nl2(box2, 1e-3, 0.5);
+        nl2.build(pos2);
+        EXPECT_LT(nl2.memory_bytes(), 2000 * 200 + (std::size_t{1} << 20));
+    }
+}
+
 TEST(NeighborList, CountsBuildsAndReusesBuffers) {
     const std::size_t n = 36000;
     const double L = std::sqrt(n / 0.4);

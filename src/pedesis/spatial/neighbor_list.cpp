@@ -55,10 +55,18 @@ NeighborList<D>::NeighborList(const Box<D>& box, double r_cut, double skin)
                 "neighbour list: box too small for the cutoff: periodic axis {} has length {} "
                 "but the minimum image needs at least 2 r_list = {} (r_list = r_cut + skin = {})",
                 a, box.length(a), 2.0 * r_list_, r_list_));
-    set_grid(1);
+    set_grid(1, grid_cell(1, 0));
 }
 
-template <int D> int NeighborList<D>::choose_block_width(int k, int reach) const {
+template <int D> double NeighborList<D>::grid_cell(int reach, std::size_t n) const {
+    std::size_t most = min_grid_cells;
+    while (most < grid_cells_per_particle * n && most < (std::size_t{1} << 40)) most *= 2;
+    double volume = 1.0;
+    for (int a = 0; a < D; ++a) volume *= box_.length(a);
+    return std::max(r_list_ / reach, std::pow(volume / static_cast<double>(most), 1.0 / D));
+}
+
+template <int D> int NeighborList<D>::choose_block_width(int k, int reach, double cell) const {
     const int narrowest = (2 * reach + k - 2) / (k - 1);
     // In a large system the colour sweep is what brings particles through the caches:
     // each colour visits its blocks and the cells round them, so with blocks of w cells
@@ -80,9 +88,8 @@ template <int D> int NeighborList<D>::choose_block_width(int k, int reach) const
     std::array<int, D> along{};
     int fewest = CellList<D>::max_cells_along;
     for (int a = 0; a < D; ++a) {
-        along[a] =
-            clamped_int(box_.length(a) / (r_list_ / reach * (1.0 + CellList<D>::width_margin)), 1,
-                        CellList<D>::max_cells_along);
+        along[a] = clamped_int(box_.length(a) / (cell * (1.0 + CellList<D>::width_margin)), 1,
+                               CellList<D>::max_cells_along);
         fewest = std::min(fewest, along[a]);
     }
     // the cells along an axis once the periodic multiple m is taken (CellList)
@@ -102,8 +109,9 @@ template <int D> int NeighborList<D>::choose_block_width(int k, int reach) const
     return narrowest;
 }
 
-template <int D> void NeighborList<D>::set_grid(int reach) {
+template <int D> void NeighborList<D>::set_grid(int reach, double cell) {
     reach_ = reach;
+    cell_ = cell;
     // Blocks w cells wide, k colours per axis: two blocks of one colour have (k - 1) w
     // cells between them and a row writes at most reach cells beyond its block, so
     // (k - 1) w >= 2 reach keeps their writes apart. Each colour costs the sweep a
@@ -112,9 +120,9 @@ template <int D> void NeighborList<D>::set_grid(int reach) {
     // against 1.79, wca3d 1.07x) and k = 3, w = reach for half-width cells (lj3d 7%
     // faster than k = 2, w = 4).
     const int k = reach == 1 ? 2 : 3;
-    const int w = choose_block_width(k, reach);
+    const int w = choose_block_width(k, reach, cell);
     block_width_ = w;
-    cells_ = CellList<D>(box_, r_list_ / reach, k * w);
+    cells_ = CellList<D>(box_, cell, k * w);
     std::array<int, D> along, width, blocks_along, colours_along;
     std::size_t n_blocks = 1;
     for (int a = 0; a < D; ++a) {
@@ -257,7 +265,8 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     double cell_volume = 1.0;
     for (int a = 0; a < D; ++a) cell_volume *= r_list_;
     const int stencil_reach = static_cast<double>(n) / box_.volume() * cell_volume >= 8.0 ? 2 : 1;
-    if (stencil_reach != reach_) set_grid(stencil_reach);
+    if (const double cell = grid_cell(stencil_reach, n); stencil_reach != reach_ || cell != cell_)
+        set_grid(stencil_reach, cell);
     const std::size_t n_cells = cells_.cell_count();
     const auto sc = static_cast<std::int64_t>(n_cells);
     cell_of_.resize(n);

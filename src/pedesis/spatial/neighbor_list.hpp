@@ -188,9 +188,19 @@ template <int D> class NeighborList {
         std::array<int, D> o;
     };
     std::vector<StencilRow> stencil_rows_;
-    void set_grid(int reach);
+    void set_grid(int reach, double cell);
+    // The cells' least width for `reach` and n particles: r_list / reach, or wider where
+    // that would make a sparse system's grid hold more than grid_cells_per_particle cells
+    // a particle (rounded up to a power of two, so that a count that wanders does not
+    // remake the grid at every build), or min_grid_cells where that is more. A box 200
+    // wide with free particles (r_list = skin = 0.5) took 406^3 cells, 256 MB and a pass
+    // over 67 million cells per build, for any N. Wider cells hold the same pairs.
+    double grid_cell(int reach, std::size_t n) const;
+    static constexpr std::size_t grid_cells_per_particle = 4;
+    static constexpr std::size_t min_grid_cells = 4096;
+    double cell_ = 0.0; // the least width of the grid's cells (set_grid)
     // The colour blocks' width in cells for k colours per axis (set_grid).
-    int choose_block_width(int k, int reach) const;
+    int choose_block_width(int k, int reach, double cell) const;
     static constexpr int max_block_width = 32;
     int block_width_ = 2;
     // Each build: the particles in that order (sweep_), cut at block boundaries into
