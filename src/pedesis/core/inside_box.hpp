@@ -43,13 +43,8 @@ template <int D>
                                              std::size_t first, std::size_t last) {
     static_assert(sizeof(Vec<D>) == D * sizeof(double), "positions must lie packed");
     __m256d lo[D], hi[D];
-    for (int v = 0; v < D; ++v) {
-        double l[4], h[4];
-        interleaved_axes<D>(b.lo, v, l);
-        interleaved_axes<D>(b.hi, v, h);
-        lo[v] = _mm256_loadu_pd(l);
-        hi[v] = _mm256_loadu_pd(h);
-    }
+    interleaved_axes_avx2<D>(b.lo, lo);
+    interleaved_axes_avx2<D>(b.hi, hi);
     __m256d inside = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
     std::size_t k = first;
     for (; k + 4 <= last; k += 4) {

@@ -65,13 +65,8 @@ template <int D>
                                                     std::size_t last) {
     static_assert(sizeof(Vec<D>) == D * sizeof(double), "positions must lie packed");
     __m256d half[D], length[D];
-    for (int v = 0; v < D; ++v) {
-        double h[4], l[4];
-        interleaved_axes<D>(in.half, v, h);
-        interleaved_axes<D>(in.length, v, l);
-        half[v] = _mm256_loadu_pd(h);
-        length[v] = _mm256_loadu_pd(l);
-    }
+    interleaved_axes_avx2<D>(in.half, half);
+    interleaved_axes_avx2<D>(in.length, length);
     const __m256d zero = _mm256_setzero_pd();
     const __m256d skin2 = _mm256_set1_pd(in.skin2), half_skin2 = _mm256_set1_pd(in.half_skin2);
     __m256d most2 = zero;
