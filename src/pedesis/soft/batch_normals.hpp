@@ -1,10 +1,12 @@
 #pragma once
 // Standard normals for a batch of particles from the counter-based Philox stream, for
 // the integrators' noise (brownian, brownian_rotation, langevin).
+#include "pedesis/core/chunk_shares.hpp"
 #include "pedesis/core/noise_log.hpp"
 #include "pedesis/core/philox_batch.hpp"
 #include "pedesis/core/simd_level.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -12,6 +14,28 @@ namespace pedesis::detail {
 
 // Particles per batch of the integrator loops.
 constexpr int noise_batch = 64;
+// Batches a thread takes at a time from its share (core/chunk_shares.hpp): 256 particles,
+// a few microseconds of drawing and moving, against some 10 ns to take the chunk.
+constexpr std::int64_t batches_per_chunk = 4;
+// Normals a particle's rotation draws per step: an angle in 2D, a vector in 3D. (Array
+// bounds inside the integrators' lambdas come from namespace constants: GCC 12 fails on
+// local ones.)
+template <int D> constexpr int normals_per_rotation = D == 2 ? 1 : 3;
+
+// body(first, m) for every batch of [0, n): particles first .. first + m - 1 (m is
+// noise_batch but in the last), in parallel, shared out by ChunkShares. (No reduction:
+// the integrators record a rare blow-up in a critical section.)
+template <class Body> void parallel_for_each_batch(std::int64_t n, Body&& body) {
+    const std::int64_t batches = (n + noise_batch - 1) / noise_batch;
+    ChunkShares shares(batches, batches_per_chunk);
+#pragma omp parallel
+    shares.run([&](std::int64_t first_batch, std::int64_t last_batch) {
+        for (std::int64_t b = first_batch; b < last_batch; ++b) {
+            const std::int64_t first = b * noise_batch;
+            body(first, static_cast<int>(std::min<std::int64_t>(noise_batch, n - first)));
+        }
+    });
+}
 
 // The Philox uniforms of the (Per + 1) / 2 blocks of each particle, block p of particle k
 // at [p * noise_batch + k]: the first and second of each block in u1 and u2.

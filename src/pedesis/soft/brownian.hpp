@@ -86,26 +86,26 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-        constexpr int B = detail::noise_batch;
-        const std::int64_t batches = (n + B - 1) / B;
-#pragma omp parallel for schedule(static) reduction(min : bad)
-        for (std::int64_t b = 0; b < batches; ++b) {
-            const std::int64_t first = b * B;
-            const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
-            double z[B * D];
+        detail::parallel_for_each_batch(n, [&](std::int64_t first, int m) {
+            double z[detail::noise_batch * D];
             if (noisy)
                 detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, s.p.tag.data() + first,
                                        step, m, z);
+            else // (unread; filled so that no compiler takes it for uninitialised)
+                std::fill_n(z, m * D, 0.0);
             for (int k = 0; k < m; ++k) {
                 const std::int64_t i = first + k;
                 Vec<D> move = drift[sp[i]] * s.force[i];
                 if (noisy)
                     for (int a = 0; a < D; ++a) move[a] += kick[sp[i]] * z[k * D + a];
-                if (!(norm2(move) <= max2)) bad = std::min(bad, i);
+                if (!(norm2(move) <= max2)) {
+#pragma omp critical(pedesis_brownian_bad_move)
+                    bad = std::min(bad, i);
+                }
                 s.p.position[i] += move;
                 s.p.velocity[i] = move * (1.0 / dt);
             }
-        }
+        });
         if (bad != std::numeric_limits<std::int64_t>::max()) {
             const auto i = static_cast<std::size_t>(bad);
             detail::throw_bad_move(s, i, s.p.velocity[i] * dt, max_move, name());
@@ -141,20 +141,15 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
         const std::uint16_t* sp = s.p.species.data();
         const auto n = static_cast<std::int64_t>(s.owned());
         const auto step = static_cast<std::uint32_t>(s.step);
-        constexpr int B = detail::noise_batch;
-        constexpr int per = D == 2 ? 1 : 3; // normals per particle
+        constexpr int per = detail::normals_per_rotation<D>;
         const bool noisy = c_.noisy;
-        const std::int64_t batches = (n + B - 1) / B;
-#pragma omp parallel for schedule(static)
-        for (std::int64_t b = 0; b < batches; ++b) {
-            const std::int64_t first = b * B;
-            const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
-            double z[B * per];
+        detail::parallel_for_each_batch(n, [&](std::int64_t first, int m) {
+            double z[detail::noise_batch * detail::normals_per_rotation<D>];
             if (noisy)
                 detail::batch_normals<per>(seed_, RngStream::orientation, s.p.tag.data() + first,
                                            step, m, z);
             if constexpr (D == 2) {
-                double angle[B], sn[B], cs[B];
+                double angle[detail::noise_batch], sn[detail::noise_batch], cs[detail::noise_batch];
                 for (int k = 0; k < m; ++k) {
                     const std::int64_t i = first + k;
                     const double kick = kick_of[sp[i]];
@@ -185,7 +180,7 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
                     rotate_on_sphere(w, s.director[i]);
                 }
             }
-        }
+        });
     }
 
   private:

@@ -1,4 +1,5 @@
 #include "pedesis/soft/evolver.hpp"
+#include "pedesis/core/chunk_shares.hpp"
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/inside_box.hpp"
@@ -117,17 +118,20 @@ template <int D> void Evolver<D>::wrap_all() {
     constexpr std::int64_t block = 256;
     const std::int64_t blocks = (n + block - 1) / block;
     const Vec<D>* pos = s_.p.position.data();
-#pragma omp parallel for schedule(static)
-    for (std::int64_t b = 0; b < blocks; ++b) {
-        const auto first = static_cast<std::size_t>(b * block);
-        const auto last = static_cast<std::size_t>(std::min(n, (b + 1) * block));
-        if (all_inside(bounds, pos, first, last)) continue;
-        for (std::size_t i = first; i < last; ++i) {
-            if (detail::inside_bounds<D>(bounds, pos[i])) continue;
-            const Vec<D> shift = s_.box.wrap(s_.p.position[i]);
-            for (int a = 0; a < D; ++a) s_.image[i][a] += static_cast<std::int32_t>(shift[a]);
+    ChunkShares shares(blocks, 4);
+#pragma omp parallel
+    shares.run([&](std::int64_t first_block, std::int64_t last_block) {
+        for (std::int64_t b = first_block; b < last_block; ++b) {
+            const auto first = static_cast<std::size_t>(b * block);
+            const auto last = static_cast<std::size_t>(std::min(n, (b + 1) * block));
+            if (all_inside(bounds, pos, first, last)) continue;
+            for (std::size_t i = first; i < last; ++i) {
+                if (detail::inside_bounds<D>(bounds, pos[i])) continue;
+                const Vec<D> shift = s_.box.wrap(s_.p.position[i]);
+                for (int a = 0; a < D; ++a) s_.image[i][a] += static_cast<std::int32_t>(shift[a]);
+            }
         }
-    }
+    });
 }
 
 template <int D> void Evolver<D>::reorder_storage() {
@@ -198,11 +202,10 @@ template <int D> void Evolver<D>::compute_forces() {
     // in parallel like every per-particle loop of a step: serial, it would cap the speed-up
     // with threads
     const auto n = static_cast<std::int64_t>(s_.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) {
+    parallel_for_each_index(n, [&](std::int64_t i) {
         s_.force[i] = Vec<D>{};
         s_.torque[i] = TorqueVec<D>{};
-    }
+    });
     for (const auto& f : forces_) f->add_forces(s_, *nl_);
     for (const auto& t : torques_) t->add_torques(s_, *nl_);
     forces_current_ = true;

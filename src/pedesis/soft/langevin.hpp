@@ -14,6 +14,7 @@
 // on thread count or storage order. xi is a standard normal, or with uniform_noise a
 // uniform variate of the same variance (batch_normals.hpp). A particle of infinite mass
 // is a fixed obstacle.
+#include "pedesis/core/chunk_shares.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
 #include "pedesis/soft/batch_normals.hpp"
@@ -117,13 +118,8 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         Vec<D> bad_move{};
         // Batches of particles: their normals are drawn together (batch_normals), the
         // same numbers as one particle at a time, several at once.
-        constexpr int B = detail::noise_batch;
-        const std::int64_t batches = (n + B - 1) / B;
-#pragma omp parallel for schedule(static)
-        for (std::int64_t b = 0; b < batches; ++b) {
-            const std::int64_t first = b * B;
-            const int m = static_cast<int>(std::min<std::int64_t>(B, n - first));
-            double z[B * D];
+        detail::parallel_for_each_batch(n, [&](std::int64_t first, int m) {
+            double z[detail::noise_batch * D];
             if (noisy)
                 detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, tag + first, step, m,
                                        z);
@@ -146,7 +142,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
                 pos[i] += move;
                 vel[i] = v;
             }
-        }
+        });
         if (bad != std::numeric_limits<std::int64_t>::max())
             detail::throw_bad_move(s, static_cast<std::size_t>(bad), bad_move, max_move, name());
     }
@@ -159,8 +155,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         const Vec<D>* force = s.force.data();
         Vec<D>* vel = s.p.velocity.data();
         const auto n = static_cast<std::int64_t>(s.owned());
-#pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < n; ++i) vel[i] += kick[sp[i]] * force[i];
+        parallel_for_each_index(n, [&](std::int64_t i) { vel[i] += kick[sp[i]] * force[i]; });
     }
 
   private:

@@ -1,5 +1,6 @@
 #pragma once
 // Self-propulsion of the ABP tutorial: F_i = alpha n_i along the particle's polarity.
+#include "pedesis/core/chunk_shares.hpp"
 #include "pedesis/soft/per_species.hpp"
 #include "pedesis/soft/plugins.hpp"
 
@@ -51,8 +52,8 @@ template <int D> class SelfPropulsion final : public ForceTerm<D> {
         const double* alpha = table_.data();
         const std::uint16_t* sp = s.p.species.data();
         const auto n = static_cast<std::int64_t>(s.owned());
-#pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < n; ++i) s.force[i] += alpha[sp[i]] * s.director[i];
+        parallel_for_each_index(
+            n, [&](std::int64_t i) { s.force[i] += alpha[sp[i]] * s.director[i]; });
     }
 
   private:

@@ -5,6 +5,7 @@
 // It is symplectic and time-reversible, so the energy error stays bounded, O(dt^2), over
 // long runs instead of drifting. The pre-step reads the forces of the current positions,
 // hence needs_initial_forces(). A particle of infinite mass is a fixed obstacle.
+#include "pedesis/core/chunk_shares.hpp"
 #include "pedesis/soft/blow_up.hpp"
 #include "pedesis/soft/plugins.hpp"
 
@@ -31,13 +32,16 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         const auto n = static_cast<std::int64_t>(s.owned());
         const double max2 = max_move * max_move;
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-#pragma omp parallel for schedule(static) reduction(min : bad)
-        for (std::int64_t i = 0; i < n; ++i) {
-            vel[i] += kick[sp[i]] * force[i];
-            const Vec<D> move = drift[sp[i]] * vel[i];
-            if (!(norm2(move) <= max2)) bad = std::min(bad, i);
-            pos[i] += move;
-        }
+        ChunkShares shares(n, light_items_per_chunk);
+#pragma omp parallel reduction(min : bad)
+        shares.run([&](std::int64_t first, std::int64_t last) {
+            for (std::int64_t i = first; i < last; ++i) {
+                vel[i] += kick[sp[i]] * force[i];
+                const Vec<D> move = drift[sp[i]] * vel[i];
+                if (!(norm2(move) <= max2)) bad = std::min(bad, i);
+                pos[i] += move;
+            }
+        });
         if (bad != std::numeric_limits<std::int64_t>::max()) {
             const auto i = static_cast<std::size_t>(bad);
             detail::throw_bad_move(s, i, drift_[sp[i]] * vel[i], max_move, name());
@@ -51,8 +55,7 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         const Vec<D>* force = s.force.data();
         Vec<D>* vel = s.p.velocity.data();
         const auto n = static_cast<std::int64_t>(s.owned());
-#pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < n; ++i) vel[i] += kick[sp[i]] * force[i];
+        parallel_for_each_index(n, [&](std::int64_t i) { vel[i] += kick[sp[i]] * force[i]; });
     }
 
     // Per species: half kick dt/(2m), and drift dt, zero for an infinite mass so that an

@@ -1,5 +1,7 @@
 #include "pedesis/spatial/neighbor_list.hpp"
 
+#include "pedesis/core/chunk_shares.hpp"
+
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/core/stage.hpp"
@@ -702,16 +704,19 @@ template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& 
         in.length[a] = periodic ? box_.length(a) : 0.0;
     }
     const auto block_moves = detail::block_moves_for<D>(simd_level());
-#pragma omp parallel for schedule(static) reduction(|| : too_far) reduction(max : most2) \
-    reduction(+ : movers) if (static_cast<std::int64_t>(n_) >= parallel_min)
-    for (std::int64_t b = 0; b < sb; ++b) {
-        const std::size_t first = static_cast<std::size_t>(b) * mover_block;
-        const detail::BlockMoves m = block_moves(in, first, std::min(n_, first + mover_block));
-        too_far = too_far || m.far;
-        most2 = std::max(most2, m.most2);
-        movers += m.movers;
-        mover_blocks_[static_cast<std::size_t>(b)] = m.movers > 0 ? 1 : 0;
-    }
+    ChunkShares shares(sb, 4);
+#pragma omp parallel reduction(|| : too_far) reduction(max : most2) reduction(+ : movers) \
+    if (static_cast<std::int64_t>(n_) >= parallel_min)
+    shares.run([&](std::int64_t first_block, std::int64_t last_block) {
+        for (std::int64_t b = first_block; b < last_block; ++b) {
+            const std::size_t first = static_cast<std::size_t>(b) * mover_block;
+            const detail::BlockMoves m = block_moves(in, first, std::min(n_, first + mover_block));
+            too_far = too_far || m.far;
+            most2 = std::max(most2, m.most2);
+            movers += m.movers;
+            mover_blocks_[static_cast<std::size_t>(b)] = m.movers > 0 ? 1 : 0;
+        }
+    });
     if (too_far) return true;
     if (movers == 0) return false;
     if (movers > checked_movers + n_ / checked_movers_per) return true;
