@@ -14,6 +14,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -423,6 +424,44 @@ TEST(NeighborList, SameRowsWhateverTheThreadCount) {
     }
     const Box<3> box3(Vec<3>{{24.0, 24.0, 24.0}}, {true, true, false});
     check_thread_independence(box3, test::random_positions(box3, 11000, 79, 6), 1.2, 0.3);
+}
+
+// The threads' first runs of each colour, as sweep positions for the per-particle loops:
+// each colour's runs start where its chunks do and end where the next colour's start,
+// cut only at chunk starts; and for_each_chunk, whatever the team, visits every row once.
+TEST(NeighborList, ThreadSharesFollowTheColoursChunks) {
+    const int saved = omp_get_max_threads();
+    const Box<2> box(Vec<2>{{120.0, 120.0}}, {true, true});
+    const auto pos = test::random_positions(box, 5000, 81, 6);
+    for (int threads : {1, 2, 3}) {
+        omp_set_num_threads(threads);
+        NeighborList<2> nl(box, 2.0, 0.5);
+        nl.build(pos);
+        const std::vector<std::int64_t> b = nl.thread_share_bounds();
+        const auto at = [&](std::size_t c) {
+            return static_cast<std::int64_t>(nl.chunk(c).data() - nl.sweep_order().data());
+        };
+        ASSERT_EQ(b.size(), static_cast<std::size_t>(nl.colours() * threads + 1));
+        EXPECT_TRUE(std::is_sorted(b.begin(), b.end()));
+        EXPECT_EQ(b.back(), static_cast<std::int64_t>(pos.size()));
+        std::vector<std::int64_t> starts; // every chunk's start
+        for (std::size_t c = 0; c < nl.chunks_of_colour(nl.colours() - 1)[1]; ++c)
+            starts.push_back(at(c));
+        for (int k = 0; k < nl.colours(); ++k) {
+            EXPECT_EQ(b[static_cast<std::size_t>(k * threads)], at(nl.chunks_of_colour(k)[0]));
+            for (int t = 0; t < threads; ++t)
+                EXPECT_TRUE(std::binary_search(starts.begin(), starts.end(),
+                                               b[static_cast<std::size_t>(k * threads + t)]));
+        }
+        std::vector<std::atomic<int>> visits(pos.size());
+        nl.for_each_chunk([&](std::span<const std::uint32_t> rows) {
+            for (std::uint32_t i : rows) ++visits[i];
+        });
+        int wrong = 0;
+        for (const auto& v : visits) wrong += v.load() != 1;
+        EXPECT_EQ(wrong, 0) << threads << " threads";
+    }
+    omp_set_num_threads(saved);
 }
 
 TEST(NeighborList, MovedHalfSkinFollowsTheSkinHalf) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 
 namespace pedesis::detail {
 
@@ -23,11 +24,12 @@ constexpr std::int64_t batches_per_chunk = 4;
 template <int D> constexpr int normals_per_rotation = D == 2 ? 1 : 3;
 
 // body(first, m) for every batch of [0, n): particles first .. first + m - 1 (m is
-// noise_batch but in the last), in parallel, shared out by ChunkShares. (No reduction:
-// the integrators record a rare blow-up in a critical section.)
-template <class Body> void parallel_for_each_batch(std::int64_t n, Body&& body) {
-    const std::int64_t batches = (n + noise_batch - 1) / noise_batch;
-    ChunkShares shares(batches, batches_per_chunk);
+// noise_batch but in the last), in parallel, shared out by ChunkShares along the
+// particle ranges `bounds` where they fit. (No reduction: the integrators record a rare
+// blow-up in a critical section.)
+template <class Body>
+void parallel_for_each_batch(std::int64_t n, std::span<const std::int64_t> bounds, Body&& body) {
+    ChunkShares shares(n, batches_per_chunk, noise_batch, bounds);
 #pragma omp parallel
     shares.run([&](std::int64_t first_batch, std::int64_t last_batch) {
         for (std::int64_t b = first_batch; b < last_batch; ++b) {

@@ -86,7 +86,7 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-        detail::parallel_for_each_batch(n, [&](std::int64_t first, int m) {
+        detail::parallel_for_each_batch(n, s.thread_shares, [&](std::int64_t first, int m) {
             double z[detail::noise_batch * D];
             if (noisy)
                 detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, s.p.tag.data() + first,
@@ -143,7 +143,7 @@ template <int D> class BrownianRotationIntegrator final : public Integrator<D> {
         const auto step = static_cast<std::uint32_t>(s.step);
         constexpr int per = detail::normals_per_rotation<D>;
         const bool noisy = c_.noisy;
-        detail::parallel_for_each_batch(n, [&](std::int64_t first, int m) {
+        detail::parallel_for_each_batch(n, s.thread_shares, [&](std::int64_t first, int m) {
             double z[detail::noise_batch * detail::normals_per_rotation<D>];
             if (noisy)
                 detail::batch_normals<per>(seed_, RngStream::orientation, s.p.tag.data() + first,

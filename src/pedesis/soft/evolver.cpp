@@ -116,9 +116,8 @@ template <int D> void Evolver<D>::wrap_all() {
     }
     const auto all_inside = detail::all_inside_for<D>(simd_level());
     constexpr std::int64_t block = 256;
-    const std::int64_t blocks = (n + block - 1) / block;
     const Vec<D>* pos = s_.p.position.data();
-    ChunkShares shares(blocks, 4);
+    ChunkShares shares(n, 4, block, s_.thread_shares);
 #pragma omp parallel
     shares.run([&](std::int64_t first_block, std::int64_t last_block) {
         for (std::int64_t b = first_block; b < last_block; ++b) {
@@ -152,6 +151,8 @@ template <int D> void Evolver<D>::reorder_storage() {
     // renumbering the rows instead would sum a particle's forces in another order where
     // a pair's row is that of its lower storage index (the full stencil of narrow boxes).
     nl_->build(s_.p.position);
+    // (its sweep is the storage order now)
+    s_.thread_shares = nl_->thread_share_bounds();
 }
 
 template <int D> void Evolver<D>::sort_storage() {
@@ -202,7 +203,7 @@ template <int D> void Evolver<D>::compute_forces() {
     // in parallel like every per-particle loop of a step: serial, it would cap the speed-up
     // with threads
     const auto n = static_cast<std::int64_t>(s_.size());
-    parallel_for_each_index(n, [&](std::int64_t i) {
+    parallel_for_each_index(n, s_.thread_shares, [&](std::int64_t i) {
         s_.force[i] = Vec<D>{};
         s_.torque[i] = TorqueVec<D>{};
     });

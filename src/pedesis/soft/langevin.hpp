@@ -118,7 +118,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         Vec<D> bad_move{};
         // Batches of particles: their normals are drawn together (batch_normals), the
         // same numbers as one particle at a time, several at once.
-        detail::parallel_for_each_batch(n, [&](std::int64_t first, int m) {
+        detail::parallel_for_each_batch(n, s.thread_shares, [&](std::int64_t first, int m) {
             double z[detail::noise_batch * D];
             if (noisy)
                 detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, tag + first, step, m,
@@ -155,7 +155,8 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         const Vec<D>* force = s.force.data();
         Vec<D>* vel = s.p.velocity.data();
         const auto n = static_cast<std::int64_t>(s.owned());
-        parallel_for_each_index(n, [&](std::int64_t i) { vel[i] += kick[sp[i]] * force[i]; });
+        parallel_for_each_index(n, s.thread_shares,
+                                [&](std::int64_t i) { vel[i] += kick[sp[i]] * force[i]; });
     }
 
   private:

@@ -52,8 +52,9 @@ template <int D> class SelfPropulsion final : public ForceTerm<D> {
         const double* alpha = table_.data();
         const std::uint16_t* sp = s.p.species.data();
         const auto n = static_cast<std::int64_t>(s.owned());
-        parallel_for_each_index(
-            n, [&](std::int64_t i) { s.force[i] += alpha[sp[i]] * s.director[i]; });
+        parallel_for_each_index(n, s.thread_shares, [&](std::int64_t i) {
+            s.force[i] += alpha[sp[i]] * s.director[i];
+        });
     }
 
   private:

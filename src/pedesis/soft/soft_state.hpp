@@ -29,6 +29,11 @@ template <int D> struct SoftState {
     // particles are copies of other processes' particles within interaction range: they
     // enter neighbour lists and pair sums but are not integrated. 0 on one process.
     std::size_t ghosts = 0;
+    // How the per-particle loops share the particles out among threads: the storage
+    // ranges on which the force loop started each thread at the last sort
+    // (NeighborList::thread_share_bounds, core/chunk_shares.hpp). A hint for speed only:
+    // where it no longer fits (another particle count or thread count), equal shares.
+    std::vector<std::int64_t> thread_shares;
 
     std::size_t size() const { return p.size(); }
     // The particles this process integrates: indices [0, owned()).

@@ -32,7 +32,7 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         const auto n = static_cast<std::int64_t>(s.owned());
         const double max2 = max_move * max_move;
         std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-        ChunkShares shares(n, light_items_per_chunk);
+        ChunkShares shares(n, light_items_per_chunk, 1, s.thread_shares);
 #pragma omp parallel reduction(min : bad)
         shares.run([&](std::int64_t first, std::int64_t last) {
             for (std::int64_t i = first; i < last; ++i) {
@@ -55,7 +55,8 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         const Vec<D>* force = s.force.data();
         Vec<D>* vel = s.p.velocity.data();
         const auto n = static_cast<std::int64_t>(s.owned());
-        parallel_for_each_index(n, [&](std::int64_t i) { vel[i] += kick[sp[i]] * force[i]; });
+        parallel_for_each_index(n, s.thread_shares,
+                                [&](std::int64_t i) { vel[i] += kick[sp[i]] * force[i]; });
     }
 
     // Per species: half kick dt/(2m), and drift dt, zero for an infinite mass so that an

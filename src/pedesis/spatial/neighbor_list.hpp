@@ -19,8 +19,12 @@
 // in its one writing block).
 // The row order is the cell-list scan order, which depends only on the positions.
 #include "pedesis/core/box.hpp"
+#include "pedesis/core/chunk_shares.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -87,19 +91,33 @@ template <int D> class NeighborList {
     // i < size() once, in the colour order above: in parallel, and such that no two
     // concurrent calls write the same particle when each writes only to its particles
     // and the entries of their rows. Within a chunk the particles come in a fixed order.
-    // Call it from outside any parallel region.
+    // Thread t takes the t-th of equal runs of each colour's chunks first, then helps
+    // the others (core/chunk_shares.hpp). Call it from outside any parallel region.
     template <class Rows> void for_each_chunk(Rows&& rows) const {
-        const auto colours = static_cast<int>(colour_chunk_.size()) - 1; // -1 before a build
+        if (colour_chunk_.size() < 2) return; // before a build
+        const std::vector<std::int64_t> bounds =
+            thread_runs([](std::size_t c) { return static_cast<std::int64_t>(c); });
+        ChunkShares shares(static_cast<std::int64_t>(chunk_start_.size()) - 1, 1, 1, bounds);
 #pragma omp parallel
-        for (int k = 0; k < colours; ++k) {
-            // (the implicit barrier at the end of each loop separates the colours)
-#pragma omp for schedule(dynamic, 1)
-            for (std::int64_t c = static_cast<std::int64_t>(colour_chunk_[k]);
-                 c < static_cast<std::int64_t>(colour_chunk_[k + 1]); ++c)
-                rows(chunk(static_cast<std::size_t>(c)));
+        for (int k = 0; k < shares.rounds(); ++k) {
+            shares.run_round(k, [&](std::int64_t first, std::int64_t last) {
+                for (std::int64_t c = first; c < last; ++c)
+                    rows(chunk(static_cast<std::size_t>(c)));
+            });
+            // (the colours one after another)
+#pragma omp barrier
         }
     }
-
+    // Where the particles of the runs for_each_chunk gives each thread first lie in the
+    // sweep order (sweep_order()): thread t's in colour k are [b[k T + t], b[k T + t + 1])
+    // for T = omp_get_max_threads(). Storage in the sweep's order (after a sort) makes
+    // them storage ranges, along which the per-particle loops share out their work, so
+    // that each particle is integrated on the core that summed its force.
+    std::vector<std::int64_t> thread_share_bounds() const {
+        if (colour_chunk_.size() < 2) return {};
+        return thread_runs(
+            [this](std::size_t c) { return static_cast<std::int64_t>(chunk_start_[c]); });
+    }
     // The colouring, for tests: the chunks of colour k are [first, last).
     int colours() const {
         return static_cast<int>(colour_block_.size()) - 1;
@@ -211,6 +229,19 @@ template <int D> class NeighborList {
     std::vector<std::uint32_t> sweep_;
     std::vector<std::size_t> chunk_start_, colour_chunk_;
     void make_sweep();
+    // For each colour k and thread t < T = omp_get_max_threads(), at(first chunk of the
+    // t-th of T equal runs of k's chunks), then at(the chunk count).
+    template <class At> std::vector<std::int64_t> thread_runs(At&& at) const {
+        const auto threads = static_cast<std::size_t>(std::max(omp_get_max_threads(), 1));
+        std::vector<std::int64_t> b;
+        b.reserve((colour_chunk_.size() - 1) * threads + 1);
+        for (std::size_t k = 0; k + 1 < colour_chunk_.size(); ++k)
+            for (std::size_t t = 0; t < threads; ++t)
+                b.push_back(
+                    at(colour_chunk_[k] + (colour_chunk_[k + 1] - colour_chunk_[k]) * t / threads));
+        b.push_back(at(colour_chunk_.back()));
+        return b;
+    }
     // needs_rebuild for particle i, which moved more than skin/2: whether a particle
     // binned at the build within `reach` of i's present position is now closer than
     // r_cut without having been a list partner.
