@@ -85,8 +85,15 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
         const auto n = static_cast<std::int64_t>(s.owned());
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
-        std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+        detail::FirstBadMove<D> bad;
         detail::parallel_for_each_batch(n, s.thread_shares, [&](std::int64_t first, int m) {
+            // (locals, not the captured references: the stores below cannot change them, so
+            // the compiler loads them once, not once a particle)
+            const Vec<D>* const force = s.force.data();
+            Vec<D>* const position = s.p.position.data();
+            Vec<D>* const velocity = s.p.velocity.data();
+            const double inv_dt = 1.0 / dt, limit2 = max2;
+            detail::FirstBadMove<D> batch_bad;
             double z[detail::noise_batch * D];
             if (noisy)
                 detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, s.p.tag.data() + first,
@@ -95,21 +102,18 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
                 std::fill_n(z, m * D, 0.0);
             for (int k = 0; k < m; ++k) {
                 const std::int64_t i = first + k;
-                Vec<D> move = drift[sp[i]] * s.force[i];
+                Vec<D> move = drift[sp[i]] * force[i];
                 if (noisy)
                     for (int a = 0; a < D; ++a) move[a] += kick[sp[i]] * z[k * D + a];
-                if (!(norm2(move) <= max2)) {
-#pragma omp critical(pedesis_brownian_bad_move)
-                    bad = std::min(bad, i);
-                }
-                s.p.position[i] += move;
-                s.p.velocity[i] = move * (1.0 / dt);
+                if (!(norm2(move) <= limit2)) batch_bad.note(i, move);
+                position[i] += move;
+                velocity[i] = move * inv_dt;
             }
+            batch_bad.merge_into(bad);
         });
-        if (bad != std::numeric_limits<std::int64_t>::max()) {
-            const auto i = static_cast<std::size_t>(bad);
-            detail::throw_bad_move(s, i, s.p.velocity[i] * dt, max_move, name());
-        }
+        if (bad.any())
+            detail::throw_bad_move(s, static_cast<std::size_t>(bad.index), bad.move, max_move,
+                                   name());
     }
 
   private:

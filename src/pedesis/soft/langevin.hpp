@@ -112,13 +112,12 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
         // The move of the lowest bad index is kept for the message: after the O step the
-        // velocities no longer tell what it was. Only a blowing-up run enters the
-        // critical section.
-        std::int64_t bad = std::numeric_limits<std::int64_t>::max();
-        Vec<D> bad_move{};
+        // velocities no longer tell what it was.
+        detail::FirstBadMove<D> bad;
         // Batches of particles: their normals are drawn together (batch_normals), the
         // same numbers as one particle at a time, several at once.
         detail::parallel_for_each_batch(n, s.thread_shares, [&](std::int64_t first, int m) {
+            detail::FirstBadMove<D> batch_bad;
             double z[detail::noise_batch * D];
             if (noisy)
                 detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, tag + first, step, m,
@@ -132,19 +131,15 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
                 if (noisy)
                     for (int a = 0; a < D; ++a) v[a] += noise[k] * z[q * D + a];
                 move += half_drift[k] * v;
-                if (!(norm2(move) <= max2)) {
-#pragma omp critical(pedesis_langevin_bad_move)
-                    if (i < bad) {
-                        bad = i;
-                        bad_move = move;
-                    }
-                }
+                if (!(norm2(move) <= max2)) batch_bad.note(i, move);
                 pos[i] += move;
                 vel[i] = v;
             }
+            batch_bad.merge_into(bad);
         });
-        if (bad != std::numeric_limits<std::int64_t>::max())
-            detail::throw_bad_move(s, static_cast<std::size_t>(bad), bad_move, max_move, name());
+        if (bad.any())
+            detail::throw_bad_move(s, static_cast<std::size_t>(bad.index), bad.move, max_move,
+                                   name());
     }
 
     void poststep(SoftState<D>& s, double dt, double) override {
