@@ -12,6 +12,7 @@
 #include "pedesis/spatial/spatial_sort.hpp"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -262,6 +263,10 @@ template <int D> void check_storage_follows_the_sweep() {
     EXPECT_EQ(out_of_place, 0u) << "the rows are not visited in storage order";
     EXPECT_GT(e->neighbor_list().colours(), 1) << "one colour: the test would be empty";
     EXPECT_TRUE(s.p.tag == shuffled.p.tag) << "the stored order depends on the input's order";
+    // the per-particle loops then share the storage out along the force loop's runs
+    EXPECT_EQ(s.thread_shares, e->neighbor_list().thread_share_bounds());
+    EXPECT_EQ(s.thread_shares.size(),
+              static_cast<std::size_t>(e->neighbor_list().colours() * omp_get_max_threads() + 1));
 }
 
 TEST(EvolverSorting, StorageFollowsTheSweep2D) {
