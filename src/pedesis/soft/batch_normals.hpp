@@ -25,8 +25,8 @@ template <int D> constexpr int normals_per_rotation = D == 2 ? 1 : 3;
 
 // body(first, m) for every batch of [0, n): particles first .. first + m - 1 (m is
 // noise_batch but in the last), in parallel, shared out by ChunkShares along the
-// particle ranges `bounds` where they fit. (No reduction: the integrators record a rare
-// blow-up in a critical section.)
+// particle ranges `bounds` where they fit. (No reduction clause: the integrators gather
+// a rare blow-up through detail::FirstBadMove.)
 template <class Body>
 void parallel_for_each_batch(std::int64_t n, std::span<const std::int64_t> bounds, Body&& body) {
     ChunkShares shares(n, batches_per_chunk, noise_batch, bounds);

@@ -1,6 +1,6 @@
 #include "pedesis/soft/evolver.hpp"
-#include "pedesis/core/chunk_shares.hpp"
 
+#include "pedesis/core/chunk_shares.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/inside_box.hpp"
 #include "pedesis/core/interrupt.hpp"
