@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 namespace pedesis {
@@ -98,6 +99,9 @@ template <int D> class NeighborList {
         const std::vector<std::int64_t> bounds =
             thread_runs([](std::size_t c) { return static_cast<std::int64_t>(c); });
         ChunkShares shares(static_cast<std::int64_t>(chunk_start_.size()) - 1, 1, 1, bounds);
+        // (a round per colour is what keeps the colours apart: never run them as one)
+        if (shares.rounds() + 1 != static_cast<int>(colour_chunk_.size()))
+            throw std::logic_error("for_each_chunk: the colours' runs do not fit the threads");
 #pragma omp parallel
         for (int k = 0; k < shares.rounds(); ++k) {
             shares.run_round(k, [&](std::int64_t first, std::int64_t last) {
