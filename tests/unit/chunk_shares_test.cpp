@@ -104,6 +104,11 @@ TEST(ChunkShares, AStalledThreadsShareIsTakenOver) {
     omp_set_num_threads(saved);
     std::vector<std::atomic<int>> by(static_cast<std::size_t>(items));
     std::atomic<int> second_done{0};
+    std::atomic<bool> first_began{false};
+    auto wait_for = [](auto&& done) { // 10 s at most
+        for (int k = 0; k < 10000 && !done(); ++k)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    };
     int team = 0;
 #pragma omp parallel num_threads(2)
     {
@@ -112,12 +117,16 @@ TEST(ChunkShares, AStalledThreadsShareIsTakenOver) {
         const int me = omp_get_thread_num();
         shares.run([&](std::int64_t first, std::int64_t) {
             by[static_cast<std::size_t>(first)] = me + 1;
-            // thread 0 waits in its first chunk (10 s at most) until thread 1 has done
-            // everything else
-            if (me == 0 && team == 2 && first == 0)
-                for (int k = 0; k < 10000 && second_done.load() < items - 1; ++k)
-                    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-            if (me == 1) ++second_done;
+            if (team != 2) return;
+            // thread 0 stalls in its first chunk until thread 1 has done everything else;
+            // thread 1 begins only once thread 0 holds that chunk (on a loaded machine
+            // thread 0 may start late, and thread 1 would take its whole share)
+            if (me == 0 && !first_began.exchange(true))
+                wait_for([&] { return second_done.load() >= items - 1; });
+            if (me == 1) {
+                if (second_done.load() == 0) wait_for([&] { return first_began.load(); });
+                ++second_done;
+            }
         });
     }
     ASSERT_EQ(team, 2);
