@@ -93,42 +93,58 @@ TEST(ChunkShares, NoChunksForNoItems) {
     EXPECT_EQ(calls, 0);
 }
 
-// Thread 0 stalls in its first chunk (as a core slowed by a neighbour would): thread 1
-// finishes its own share and then takes the rest of thread 0's from the far end, so
-// thread 0 ends with its first chunk only. (Under schedule(static) it would do half.)
-TEST(ChunkShares, AStalledThreadsShareIsTakenOver) {
-    const std::int64_t items = 64;
+// Waits until done() (checked every millisecond), 10 s at most.
+template <class Done> void wait_for(Done&& done) {
+    for (int k = 0; k < 10000 && !done(); ++k)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+// ChunkShares prepared for two threads (bounds as in its constructor).
+ChunkShares shares_for_two(std::int64_t units, std::int64_t per_item,
+                           const std::vector<std::int64_t>& bounds) {
     const int saved = omp_get_max_threads();
     omp_set_num_threads(2);
-    ChunkShares shares(items, 1);
+    ChunkShares shares(units, 1, per_item, bounds);
     omp_set_num_threads(saved);
-    std::vector<std::atomic<int>> by(static_cast<std::size_t>(items));
-    std::atomic<int> second_done{0};
-    std::atomic<bool> first_began{false};
-    auto wait_for = [](auto&& done) { // 10 s at most
-        for (int k = 0; k < 10000 && !done(); ++k)
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    };
+    return shares;
+}
+
+// shares.run on a team of two, body(thread, first, last, team) for each chunk; the team's
+// size (2 unless the runtime gave fewer).
+template <class Body> int run_on_two(ChunkShares& shares, Body&& body) {
     int team = 0;
 #pragma omp parallel num_threads(2)
     {
 #pragma omp single
         team = omp_get_num_threads();
         const int me = omp_get_thread_num();
-        shares.run([&](std::int64_t first, std::int64_t) {
-            by[static_cast<std::size_t>(first)] = me + 1;
-            if (team != 2) return;
-            // thread 0 stalls in its first chunk until thread 1 has done everything else;
-            // thread 1 begins only once thread 0 holds that chunk (on a loaded machine
-            // thread 0 may start late, and thread 1 would take its whole share)
-            if (me == 0 && !first_began.exchange(true))
-                wait_for([&] { return second_done.load() >= items - 1; });
-            if (me == 1) {
-                if (second_done.load() == 0) wait_for([&] { return first_began.load(); });
-                ++second_done;
-            }
-        });
+        shares.run([&](std::int64_t first, std::int64_t last) { body(me, first, last, team); });
     }
+    return team;
+}
+
+// Thread 0 stalls in its first chunk (as a core slowed by a neighbour would): thread 1
+// finishes its own share and then takes the rest of thread 0's from the far end, so
+// thread 0 ends with its first chunk only. (Under schedule(static) it would do half.)
+TEST(ChunkShares, AStalledThreadsShareIsTakenOver) {
+    const std::int64_t items = 64;
+    ChunkShares shares = shares_for_two(items, 1, {});
+    std::vector<std::atomic<int>> by(static_cast<std::size_t>(items));
+    std::atomic<int> second_done{0};
+    std::atomic<bool> first_began{false};
+    const int team = run_on_two(shares, [&](int me, std::int64_t first, std::int64_t, int size) {
+        by[static_cast<std::size_t>(first)] = me + 1;
+        if (size != 2) return;
+        // thread 0 stalls in its first chunk until thread 1 has done everything else;
+        // thread 1 begins only once thread 0 holds that chunk (on a loaded machine
+        // thread 0 may start late, and thread 1 would take its whole share)
+        if (me == 0 && !first_began.exchange(true))
+            wait_for([&] { return second_done.load() >= items - 1; });
+        if (me == 1) {
+            if (second_done.load() == 0) wait_for([&] { return first_began.load(); });
+            ++second_done;
+        }
+    });
     ASSERT_EQ(team, 2);
     int by_first = 0, by_second = 0;
     for (const auto& b : by) {
@@ -148,37 +164,18 @@ std::array<std::vector<std::int64_t>, 2> orders_of_two(ChunkShares& shares, std:
     std::array<std::vector<std::int64_t>, 2> taken;
     std::atomic<std::size_t> first_count{0};
     std::atomic<bool> second_began{false};
-    auto wait_for = [](auto&& done) {
-        for (int k = 0; k < 10000 && !done(); ++k)
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    };
-    int team = 0;
-#pragma omp parallel num_threads(2)
-    {
-#pragma omp single
-        team = omp_get_num_threads();
-        const int me = omp_get_thread_num();
-        shares.run([&](std::int64_t first, std::int64_t last) {
+    const int team =
+        run_on_two(shares, [&](int me, std::int64_t first, std::int64_t last, int size) {
             for (std::int64_t i = first; i < last; ++i) {
                 taken[static_cast<std::size_t>(me)].push_back(i);
-                if (team != 2) continue;
+                if (size != 2) continue;
                 if (me == 1 && !second_began.exchange(true))
                     wait_for([&] { return first_count.load() >= head; });
                 if (me == 0 && ++first_count == head) wait_for([&] { return second_began.load(); });
             }
         });
-    }
     EXPECT_EQ(team, 2);
     return taken;
-}
-
-ChunkShares shares_for_two(std::int64_t units, std::int64_t per_item,
-                           const std::vector<std::int64_t>& bounds) {
-    const int saved = omp_get_max_threads();
-    omp_set_num_threads(2);
-    ChunkShares shares(units, 1, per_item, bounds);
-    omp_set_num_threads(saved);
-    return shares;
 }
 
 // Thread 0 owns [0, 10) and [30, 40), thread 1 [10, 30) and [40, 64): each starts on its
