@@ -9,7 +9,8 @@ O(N^2) loop. Lengths are in the units of the positions; times in those of the fr
 Structure: :func:`rdf` (g(r), per species pair), :func:`structure_factor` (direct, on
 the box's reciprocal lattice), :func:`structure_factor_from_rdf`.
 Dynamics: :func:`msd` (FFT method), :func:`msd_direct` (the O(T^2) sum it must equal),
-:func:`self_intermediate_scattering`, :func:`velocity_autocorrelation`.
+:func:`self_intermediate_scattering`, :func:`velocity_autocorrelation`; :func:`unwrap`
+(continuous paths for frames without image counts).
 Order: :func:`psi6` (2D bond order, global and per particle), :func:`steinhardt` (q4,
 q6 in 3D), :func:`clusters`.
 Active matter: :func:`polar_order`, :func:`polar_correlation`, :func:`local_area_fraction`
@@ -28,12 +29,13 @@ from .box import Box
 from .dynamics import msd, msd_direct, self_intermediate_scattering, velocity_autocorrelation
 from .frames import Trajectory, read_frames
 from .order import clusters, psi6
+from .paths import unwrap
 from .steinhardt import steinhardt
 from .structure import rdf, structure_factor, structure_factor_from_rdf
 
 __all__ = [
     "Box", "Trajectory", "read_frames", "rdf", "structure_factor", "structure_factor_from_rdf",
-    "msd", "msd_direct", "self_intermediate_scattering", "velocity_autocorrelation", "psi6",
+    "msd", "msd_direct", "unwrap", "self_intermediate_scattering", "velocity_autocorrelation", "psi6",
     "clusters", "steinhardt", "polar_order", "polar_correlation", "local_area_fraction",
     "fraction_bins", "histogram_peaks", "phase_fractions", "swim_pressure",
 ]

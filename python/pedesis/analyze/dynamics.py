@@ -3,6 +3,8 @@ autocorrelation, over a trajectory of T frames equally spaced in time."""
 import numpy as np
 from scipy.special import j0
 
+from .paths import check_unwrapped
+
 
 def _autocorrelation(x):
     """sum_k x(k) x(k + m) for every lag m, along axis 0, by FFT (zero-padded)."""
@@ -11,14 +13,18 @@ def _autocorrelation(x):
     return np.fft.irfft(f * np.conj(f), n=2 * T, axis=0)[:T]
 
 
-def msd(positions):
+def msd(positions, box=None):
     """The mean squared displacement MSD(m) = < |r(k + m) - r(k)|^2 > over particles and
     every time origin k, for lags m = 0 .. T-1, by the FFT method (O(T log T) per
     particle): MSD(m) = S1(m) - 2 S2(m) with S2 the autocorrelation of the positions and
     S1(m) = (1/(T-m)) sum_k [r(k)^2 + r(k+m)^2].
 
     ``positions``: (T, N, d), unwrapped (add image * L to wrapped positions first).
+    Raises ValueError where they look wrapped: a particle moves more than half a box
+    length between consecutive frames along a periodic axis of ``box`` (without a box:
+    more than half the extent of the positions along an axis); see paths.check_unwrapped.
     """
+    check_unwrapped(positions, box, "msd")
     x = np.asarray(positions)
     T, N = x.shape[0], x.shape[1]
     out = np.zeros(T)
@@ -55,11 +61,12 @@ def msd_direct(positions):
     return np.array([((x[m:] - x[:T - m]) ** 2).sum(axis=2).mean() for m in range(T)])
 
 
-def self_intermediate_scattering(positions, q, lags=None):
+def self_intermediate_scattering(positions, q, lags=None, box=None):
     """F_s(q, t) = < exp(i q . (r(k + m) - r(k))) >, isotropically averaged over the
     directions of q: < sin(q dr)/(q dr) > in 3D, < J0(q dr) > in 2D, over particles and
-    every time origin. ``positions`` (T, N, d), unwrapped; ``lags`` the m to compute
-    (default all). Returns the lags and F_s at each."""
+    every time origin. ``positions`` (T, N, d), unwrapped (checked as msd checks them);
+    ``lags`` the m to compute (default all). Returns the lags and F_s at each."""
+    check_unwrapped(positions, box, "self_intermediate_scattering")
     x = np.asarray(positions, dtype=float)
     T, _, d = x.shape
     lags = np.arange(T) if lags is None else np.asarray(lags, int)

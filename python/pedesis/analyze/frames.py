@@ -5,6 +5,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .box import Box
+from .paths import check_images
 
 
 @dataclass
@@ -27,46 +28,77 @@ class Trajectory:
     directors: object = None
     diameters: object = None
     times: object = None
+    # False where the engine that wrote the frames does not track box crossings (the
+    # event and stepped engines write image counts of 0); None where nothing says
+    images_tracked: object = None
+    source: str = "frames"  # the run directory or file, for messages
 
     def unwrapped(self):
-        """Positions plus image * L: continuous paths, for the MSD."""
+        """Positions plus image * L: continuous paths, for the MSD. Raises ValueError
+        where the image counts cannot give them (see paths.check_images)."""
+        check_images(self.positions, self.images, self.box, self.images_tracked, self.source)
         return self.positions + self.images * np.array(self.box.lengths)
 
 
-def _periodicity(run_dir, dimension):
-    """The run's [box] boundary from its config.toml: walls or periodic, per axis."""
+def _run_config(run_dir):
+    """The run's config.toml as a dict, or None where the folder has none."""
     config = os.path.join(run_dir, "config.toml")
     if not os.path.exists(config):
         return None
     import tomllib
 
     with open(config, "rb") as f:
-        boundary = tomllib.load(f).get("box", {}).get("boundary", "periodic")
+        return tomllib.load(f)
+
+
+def _periodicity(config, dimension):
+    """The run's [box] boundary: walls or periodic, per axis."""
+    boundary = config.get("box", {}).get("boundary", "periodic")
     if isinstance(boundary, str):
         boundary = [boundary] * dimension
     return tuple(b != "wall" for b in boundary[:dimension])
 
 
-def read_frames(source, frames=None):
-    """A Trajectory from a run directory (its trajectory.gsd; the periodicity from its
-    config.toml) or a GSD file. ``frames``: a slice or indices (default: all)."""
-    import gsd.hoomd
-
-    path, periodic = source, None
+def _gsd_path(source):
+    """The GSD file of a run directory or the file itself; FileNotFoundError naming what
+    read_frames takes where neither is there."""
     if os.path.isdir(source):
         path = os.path.join(source, "trajectory.gsd")
         if not os.path.exists(path):
             raise FileNotFoundError(f"{source}: no trajectory.gsd (set formats = [\"gsd\"])")
-    with gsd.hoomd.open(path, "rb") as traj:
-        chosen = range(len(traj))[frames] if isinstance(frames, slice) else (
-            range(len(traj)) if frames is None else list(frames))
-        snaps = [traj[int(k)] for k in chosen]
+        return path
+    if not os.path.exists(source):
+        raise FileNotFoundError(f"{source}: no such run directory or file (read_frames takes a "
+                                "run directory with trajectory.gsd, or a .gsd file)")
+    return source
+
+
+def read_frames(source, frames=None):
+    """A Trajectory from a run directory (its trajectory.gsd) or a GSD file; the
+    periodicity, and whether the image counts are tracked, from the config.toml of the
+    run directory (or of the file's folder). ``frames``: a slice or indices (default:
+    all)."""
+    import gsd.hoomd
+
+    source = os.fspath(source)
+    path = _gsd_path(source)
+    try:
+        with gsd.hoomd.open(path, "rb") as traj:
+            chosen = range(len(traj))[frames] if isinstance(frames, slice) else (
+                range(len(traj)) if frames is None else list(frames))
+            snaps = [traj[int(k)] for k in chosen]
+    except (OSError, RuntimeError) as e:
+        raise ValueError(f"{path}: cannot be read as GSD ({e}); read_frames takes a run "
+                         "directory with trajectory.gsd, or a .gsd file") from None
     if not snaps:
         raise ValueError(f"{path}: no frames")
     first = snaps[0]
     d = int(first.configuration.dimensions)
-    if os.path.isdir(source):
-        periodic = _periodicity(source, d)
+    config = _run_config(source if os.path.isdir(source) else os.path.dirname(path) or ".")
+    periodic = None if config is None else _periodicity(config, d)
+    # the event and stepped engines store image counts of 0: they do not track crossings
+    tracked = None if config is None else config.get("dynamics", "event") not in ("event",
+                                                                                  "stepped")
     box = Box(tuple(first.configuration.box[:d]), periodic)
     pos = np.stack([s.particles.position[:, :d] for s in snaps]).astype(float)
     img = np.stack([s.particles.image[:, :d] for s in snaps]).astype(float)
@@ -79,7 +111,8 @@ def read_frames(source, frames=None):
                       types=np.asarray(first.particles.typeid), type_names=list(first.particles.types),
                       steps=np.array([s.configuration.step for s in snaps]), box=box,
                       directors=directors, diameters=np.asarray(first.particles.diameter, float),
-                      times=np.array([_time(s) for s in snaps]))
+                      times=np.array([_time(s) for s in snaps]), images_tracked=tracked,
+                      source=source)
 
 
 def _time(snap):
