@@ -25,14 +25,16 @@ class Periodic:
 
 @dataclass(frozen=True)
 class GSDWriter:
-    """A GSD trajectory (HOOMD-blue's format) of the script's own, a frame at each firing."""
+    """A GSD trajectory (HOOMD-blue's format) of the script's own: a frame at the start, at
+    each firing and, as the run's own trajectory, at the end of the run."""
     path: str
     trigger: Periodic
 
 
 @dataclass(frozen=True)
 class XYZWriter:
-    """An extended-XYZ trajectory of the script's own, a frame at each firing."""
+    """An extended-XYZ trajectory of the script's own: a frame at the start, at each firing
+    and, as the run's own trajectory, at the end of the run."""
     path: str
     trigger: Periodic
 

@@ -120,7 +120,47 @@ def test_time_triggers_of_the_event_engine_are_exact(tmp_path):
     # every multiple of 0.25 before the stop at t = 3, exactly (the engine stops there)
     assert times == [0.25 * k for k in range(1, 12)]
     written = [float(t) for t in re.findall(r"Time=(\S+)", (tmp_path / "extra.xyz").read_text())]
-    assert written == [0.0, 0.75, 1.5, 2.25]  # the start, then each multiple before the stop
+    # the start, each multiple before the stop, and the stop, as the run's own frames
+    assert written == [0.0, 0.75, 1.5, 2.25, 3.0]
+
+
+def gsd_clock(path):
+    """(step, log/time) of each frame of a GSD file."""
+    with gsd.hoomd.open(str(path), "rb") as traj:
+        return [(int(f.configuration.step), float(f.log["time"][0])) for f in traj]
+
+
+@pytest.mark.parametrize("engine, trigger", [("soft", pedesis.Periodic(steps=200)),
+                                             ("event", pedesis.Periodic(time=1.0))])
+def test_a_writer_on_the_runs_own_grid_writes_the_runs_own_frames(tmp_path, engine, trigger):
+    # the run's own frames end with the stop (here a multiple of the interval); a writer
+    # fired only before it: GSDWriter(..., Periodic(steps=500)) over 4000 steps wrote
+    # t = 0 ... 17.5, the run's trajectory t = 0 ... 20
+    cfg = write(tmp_path, engine, CONFIGS[engine])
+    sim = pedesis.Simulation.from_file(cfg, out=tmp_path / "run")
+    sim.writers.append(pedesis.GSDWriter(str(tmp_path / "run" / "extra.gsd"), trigger))
+    sim.run()
+    own = gsd_clock(tmp_path / "run" / "trajectory.gsd")
+    assert len(own) == 4
+    assert gsd_clock(tmp_path / "run" / "extra.gsd") == own
+
+
+def test_a_writer_ends_with_the_state_where_a_script_closes_the_run(tmp_path):
+    cfg = write(tmp_path, "soft", SOFT)
+    sim = pedesis.Simulation.from_file(cfg, out=tmp_path / "run")
+    sim.writers.append(pedesis.GSDWriter(str(tmp_path / "run" / "extra.gsd"),
+                                         pedesis.Periodic(steps=100)))
+    sim.run(steps=250)
+    sim.close()
+    steps = [s for s, _ in gsd_clock(tmp_path / "run" / "extra.gsd")]
+    assert steps == [0, 100, 200, 250]
+    assert steps[-1] == gsd_clock(tmp_path / "run" / "trajectory.gsd")[-1][0]
+    sim = pedesis.Simulation.from_file(cfg, out=tmp_path / "again")
+    sim.writers.append(pedesis.GSDWriter(str(tmp_path / "again" / "extra.gsd"),
+                                         pedesis.Periodic(steps=100)))
+    sim.run(steps=200)  # closed where the trigger fired: that frame once
+    sim.close()
+    assert [s for s, _ in gsd_clock(tmp_path / "again" / "extra.gsd")] == [0, 100, 200]
 
 
 def test_step_triggers_keep_their_grid_across_a_restart(tmp_path):
@@ -135,7 +175,7 @@ def test_step_triggers_keep_their_grid_across_a_restart(tmp_path):
     sim.run()
     assert steps == [350, 420, 490, 560]  # multiples of 70 after step 300, before the stop
     traj = gsd.hoomd.open(str(tmp_path / "extra.gsd"), "rb")
-    assert [int(f.configuration.step) for f in traj] == [300, 420, 560]
+    assert [int(f.configuration.step) for f in traj] == [300, 420, 560, 600]
     # the continued run equals the uninterrupted one (the checkpoints differ only in the
     # frame count: the half run wrote its last frame at step 300)
     whole = pedesis.Simulation.from_file(cfg, out=tmp_path / "whole")

@@ -39,6 +39,7 @@ template <int D> class RunOf final : public Run {
 
     void run() override {
         guarded([&] { sim_.run(); });
+        if (sim_.closed()) write_last_frames();
     }
     const char* advance(std::uint64_t max_step, double max_time) override {
         const char* why = nullptr;
@@ -46,7 +47,9 @@ template <int D> class RunOf final : public Run {
         return why;
     }
     void close(const char* ended_by) override {
+        const bool was_open = !sim_.closed();
         guarded([&] { sim_.close(ended_by); });
+        if (was_open) write_last_frames();
         commit_trajectories();
     }
     bool closed() const override { return sim_.closed(); }
@@ -57,11 +60,11 @@ template <int D> class RunOf final : public Run {
     }
     void add_trajectory(const std::filesystem::path& path, const std::string& format,
                         Trigger trigger) override {
-        auto t = std::make_shared<TrajectoryFile<D>>(path, format);
+        auto t = std::make_shared<ScriptTrajectory>(path, format);
         trajectories_.push_back(t);
         RunEngine<D>& engine = *setup_.engine;
-        t->append(engine.frame()); // the start, as the run's own trajectory has it
-        sim_.add_operation(trigger, [t, &engine] { t->append(engine.frame()); });
+        t->append(engine); // the start, as the run's own trajectory has it
+        sim_.add_operation(trigger, [t, &engine] { t->append(engine); });
     }
 
     const std::vector<std::string>& log_names() const override { return sim_.log_names(); }
@@ -74,7 +77,10 @@ template <int D> class RunOf final : public Run {
         a.dimension = D;
         a.time = f.time;
         a.step = f.step;
-        for (int d = 0; d < D; ++d) a.box[static_cast<std::size_t>(d)] = f.box.length(d);
+        for (int d = 0; d < D; ++d) {
+            a.box[static_cast<std::size_t>(d)] = f.box.length(d);
+            a.periodic[static_cast<std::size_t>(d)] = f.box.periodic(d);
+        }
         for (const Species& s : p.species_table) a.species.push_back(s.name);
         const std::size_t n = f.size();
         a.type.resize(n);
@@ -110,6 +116,28 @@ template <int D> class RunOf final : public Run {
     ~RunOf() override { commit_trajectories(); }
 
   private:
+    // A script's trajectory file, and the clock of its last frame.
+    struct ScriptTrajectory {
+        ScriptTrajectory(const std::filesystem::path& path, const std::string& format)
+            : file(path, format) {}
+        void append(RunEngine<D>& engine) {
+            file.append(engine.frame());
+            step = engine.step();
+            time = engine.time();
+        }
+        TrajectoryFile<D> file;
+        std::uint64_t step = 0;
+        double time = 0.0;
+    };
+
+    // The triggers fire before the stop, as the run's own frames; like them, each script
+    // trajectory ends with the final state (once: not twice where a trigger fired there).
+    void write_last_frames() {
+        RunEngine<D>& engine = *setup_.engine;
+        for (auto& t : trajectories_)
+            if (t->step != engine.step() || t->time != engine.time()) t->append(engine);
+    }
+
     // A failed run (RunError) keeps the script's trajectories too, as the run's own.
     template <class F> void guarded(F&& f) {
         try {
@@ -120,7 +148,7 @@ template <int D> class RunOf final : public Run {
         }
     }
     void commit_trajectories() {
-        for (auto& t : trajectories_) t->commit();
+        for (auto& t : trajectories_) t->file.commit();
     }
 
     RunConfig config_;
@@ -128,7 +156,7 @@ template <int D> class RunOf final : public Run {
     EngineSetup<D> setup_;
     Simulation<D> sim_;
     bool has_steps_;
-    std::vector<std::shared_ptr<TrajectoryFile<D>>> trajectories_;
+    std::vector<std::shared_ptr<ScriptTrajectory>> trajectories_;
 };
 
 } // namespace
