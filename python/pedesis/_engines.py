@@ -46,6 +46,27 @@ def _plugin_class(entry):
         args = ", ".join(f"{k}={v!r}" for k, v in self._params.items())
         return f"pedesis.{cls_name}({args})"
 
+    # The parameters read back as attributes (None: the default), and an assignment
+    # raises: an Evolver builds its own term from them when the term is added, so a
+    # changed attribute would change nothing (bi.T = 1.0 used to pass silently).
+    def __getattr__(self, name):
+        if name in keys or name in options:
+            return self.__dict__.get("_params", {}).get(name)
+        raise AttributeError(f"{cls_name} has no attribute {name!r}")
+
+    def __setattr__(self, name, value):
+        if name.startswith("_"):
+            Plugin.__setattr__(self, name, value)
+            return
+        if name in keys or name in options:
+            raise AttributeError(
+                f"{cls_name}.{name}: a term's parameters are fixed when it is made (an "
+                f"Evolver holds its own copy of each term added); make a new "
+                f"{cls_name}(system, ..., {name}={value!r}) for a new Evolver, or, in a "
+                f"pedesis.Simulation, change a running parameter with sim.set(...)")
+        raise AttributeError(f"{cls_name} has no parameter {name!r} (it has: "
+                             f"{', '.join(keys + options) or 'none'})")
+
     lines = [f"{entry['kind'].capitalize()} '{entry['name']}' of the soft/active engine.", "",
              f"    {entry['formula']}", "", "Parameters:",
              "    system: the pedesis.System it acts on"]
@@ -70,6 +91,7 @@ def _plugin_class(entry):
     __init__.__signature__ = _inspect.Signature(params)
     __init__.__doc__ = "\n".join(lines)
     return type(cls_name, (Plugin,), {"__init__": __init__, "__repr__": __repr__,
+                                      "__getattr__": __getattr__, "__setattr__": __setattr__,
                                       "__doc__": "\n".join(lines), "__module__": "pedesis"})
 
 

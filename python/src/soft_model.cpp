@@ -11,6 +11,7 @@
 #include "pedesis/run/soft_run.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/run_config.hpp"
+#include "pedesis/soft/integrator_set.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
 #include <fmt/format.h>
@@ -128,12 +129,24 @@ template <int D> class EvolverD final : public EvolverModel {
     }
 
     void add(const PluginSpec& spec) override {
+        // the config's rule (soft/integrator_set.hpp): what can never fit is refused here,
+        // what is still missing when a step is asked for
+        if (spec.kind == PluginKind::integrator)
+            check_integrator_added(integrators_, spec, PluginNaming::python);
         add_plugin(evolver_, spec, sys_.state.p.species_table, seed_);
+        if (spec.kind == PluginKind::integrator) integrators_.push_back(spec);
+        if (spec.kind == PluginKind::torque) torques_.push_back(spec);
     }
 
     void run(std::uint64_t steps, double dt, const RunHooks& hooks) override {
         if (!(dt > 0.0 && std::isfinite(dt)))
             throw InputError(fmt::format("dt must be a positive finite number, got {}", dt));
+        check_integrators_complete(
+            integrators_, torques_,
+            "Evolver: nothing moves the particles: add a position integrator (one of " +
+                position_integrators(PluginNaming::python) +
+                ") with Evolver.add_integrator before evolve or run",
+            PluginNaming::python);
         auto& s = sys_.state;
         take_outside_changes("before the run");
         if (dt != dt_) { // a new time origin: t = t0 + (step - step0) dt, as the CLI counts
@@ -222,6 +235,7 @@ template <int D> class EvolverD final : public EvolverModel {
 
     System<D>& sys_;
     Evolver<D> evolver_;
+    std::vector<PluginSpec> integrators_, torques_; // as added, for the integrator rule
     std::uint64_t seed_;
     double t0_ = 0.0, dt_ = 0.0;
     std::uint64_t step0_ = 0;

@@ -30,3 +30,21 @@ def run_cli(pedesis_bin):
         assert r.returncode == 0, r.stderr
         return r
     return run
+
+
+@pytest.fixture
+def init(tmp_path):
+    """A 2D start of the soft engine: phi = 0.3 in a box of 20, centres 1 apart."""
+    import pedesis
+    path = tmp_path / "init.json"
+    pedesis.builder.random_init(0.3, 20, rcut=1.0, outfile=path, seed=1)
+    return path
+
+
+@pytest.fixture
+def system(init):
+    """A System read from `init`, list cutoff 2, skin 0.5."""
+    import pedesis
+    s = pedesis.System(rcut=2.0, pad=0.5)
+    s.read_init(str(init))
+    return s

@@ -11,20 +11,6 @@ import pedesis
 import pytest
 
 
-@pytest.fixture
-def init(tmp_path):
-    path = tmp_path / "init.json"
-    pedesis.builder.random_init(0.3, 20, rcut=1.0, outfile=path, seed=1)
-    return path
-
-
-@pytest.fixture
-def system(init):
-    s = pedesis.System(rcut=2.0, pad=0.5)
-    s.read_init(str(init))
-    return s
-
-
 def test_exception_classes():
     assert issubclass(pedesis.InputError, ValueError)
     assert issubclass(pedesis.RunError, RuntimeError)
@@ -96,6 +82,7 @@ def test_bad_system_and_evolver_use(tmp_path, system):
 def test_a_box_too_small_for_the_cutoff(system):
     e = pedesis.Evolver(system)
     e.add_force(pedesis.HarmonicForce(system, 1.0, 11.0))
+    e.add_integrator(pedesis.BrownianIntegrator(system, T=0.0, gamma=1.0))
     with pytest.raises(ValueError, match="box too small"):
         e.evolve(0.01)
 

@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/gpu/device_system.hpp"
+#include "pedesis/soft/blow_up.hpp"
 #include "pedesis/soft/brownian.hpp"
 #include "pedesis/soft/langevin.hpp"
 #include "pedesis/soft/pair_force.hpp"
@@ -273,10 +274,10 @@ template <int D> class GpuStepper final : public DeviceStepper<D> {
         std::string who = "gpu";
         for (const auto& i : evolver_.integrators())
             if (i->name() != "brownian_rotation") who = i->name();
-        throw RunError(fmt::format("{}: at step {} particle {} moved more than {:g} in one step "
-                                   "(the neighbour-list skin), or to a non-finite place (the run "
-                                   "blew up); reduce dt",
-                                   who, s_.step, st.bad_tag, max_move));
+        throw BlowUp(fmt::format("{}: at step {} particle {} moved more than {:g} in one step "
+                                 "(the neighbour-list skin), or to a non-finite place (the run "
+                                 "blew up)",
+                                 who, s_.step, st.bad_tag, max_move));
     }
 
     SoftState<D>& s_;

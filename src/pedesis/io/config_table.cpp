@@ -156,7 +156,9 @@ std::optional<ConfigTable> ConfigTable::table(const std::string& key) {
     if (!n) return std::nullopt;
     const toml::table* t = n->as_table();
     if (!t) fail(key, "expected a table");
-    return ConfigTable(*t, file_, full_key(key));
+    ConfigTable sub(*t, file_, full_key(key));
+    sub.note_ = note_;
+    return sub;
 }
 
 std::vector<ConfigTable> ConfigTable::tables(const std::string& key) {
@@ -170,6 +172,7 @@ std::vector<ConfigTable> ConfigTable::tables(const std::string& key) {
         const toml::table* t = e.as_table();
         if (!t) fail(key, "expected an array of tables ([[" + full_key(key) + "]])");
         out.emplace_back(*t, file_, full_key(key) + "[" + std::to_string(k++) + "]");
+        out.back().note_ = note_;
     }
     return out;
 }
@@ -182,7 +185,9 @@ void ConfigTable::finish() const {
             m << file_;
             if (v.source().begin.line > 0)
                 m << ":" << v.source().begin.line << ":" << v.source().begin.column;
-            m << ": unknown key '" << full_key(key) << "' (see docs/config.md for the keys)";
+            const std::string note = note_ ? (*note_)(full_key(key)) : std::string();
+            m << ": unknown key '" << full_key(key) << "'"
+              << (note.empty() ? std::string(" (see docs/config.md for the keys)") : ": " + note);
             throw InputError(m.str());
         }
     }

@@ -5,6 +5,8 @@
 #include <toml++/toml.h>
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -37,6 +39,14 @@ class ConfigTable {
     // Throws InputError on the first key that was never read.
     void finish() const;
 
+    // What more to say of a key that no reader took, given its full key ("run.time"):
+    // which engine takes it, say; empty for nothing. Tables read from this one (table(),
+    // tables()) say the same.
+    using UnknownKeyNote = std::function<std::string(const std::string& full_key)>;
+    void explain_unknown_keys(UnknownKeyNote note) {
+        note_ = std::make_shared<const UnknownKeyNote>(std::move(note));
+    }
+
     // "file:line:column: key 'prefix.key'" for messages about a value.
     std::string where(const std::string& key) const;
     const std::string& file() const { return file_; }
@@ -52,6 +62,7 @@ class ConfigTable {
     std::string file_;
     std::string prefix_;
     std::set<std::string> used_;
+    std::shared_ptr<const UnknownKeyNote> note_;
 };
 
 // Parses a TOML file; malformed files give "file:line:column: message".

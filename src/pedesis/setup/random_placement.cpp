@@ -4,11 +4,53 @@
 #include "pedesis/core/stage.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 namespace pedesis {
+
+namespace {
+
+// Why random placement gave up, from what it was asked: the space each particle keeps
+// free (its diameter, or min_distance where that is larger) and the share of the
+// region those spaces cover, against the limit where random sequential addition jams.
+template <int D>
+std::string crowded_message(const PlacementRequest<D>& req, std::size_t k, std::size_t total,
+                            int attempts) {
+    const double keep = std::max(2.0 * req.radius, req.min_distance);
+    double region = 1.0;
+    for (int a = 0; a < D; ++a) region *= req.hi[a] - req.lo[a];
+    const double ball =
+        D == 2 ? std::numbers::pi / 4.0 * keep * keep : std::numbers::pi / 6.0 * keep * keep * keep;
+    const double covered = static_cast<double>(total) * ball / region;
+    const double jams = D == 2 ? 0.547 : 0.38; // random sequential addition's limit
+    const bool min_distance_binds = req.min_distance > 2.0 * req.radius;
+    std::string m = fmt::format(
+        "{}: could not place particle {} of {} at random without overlap after {} attempts: "
+        "each keeps a {} of diameter {:g} free of other centres ({}), and {} of them would "
+        "cover {:.3g} of the region, where random placement jams near {} ",
+        req.what, k + 1, req.count, attempts, D == 2 ? "disk" : "sphere", keep,
+        min_distance_binds ? "[initial] min_distance" : "its diameter", total, covered, jams);
+    if (min_distance_binds) {
+        const double lower = keep * std::pow(0.8 * jams / std::max(covered, jams), 1.0 / D);
+        m += fmt::format("(or sooner, with other species). Lower [initial] min_distance to about "
+                         "{:.2g} (soft particles push small overlaps apart in their first "
+                         "steps), place them on a lattice (positions = \"{}\"), or give a "
+                         "larger box",
+                         lower, D == 2 ? "hexagonal" : "fcc");
+    } else {
+        m += fmt::format("(or sooner, with other species). Place them on a lattice (positions = "
+                         "\"{}\"), or give a larger box",
+                         D == 2 ? "hexagonal" : "fcc");
+    }
+    return m;
+}
+
+} // namespace
 
 template <int D>
 void place_randomly(std::vector<Vec<D>>& pos, std::vector<double>& radii, const Box<D>& box,
@@ -51,12 +93,7 @@ void place_randomly(std::vector<Vec<D>>& pos, std::vector<double>& radii, const 
             cells.insert(idx, r);
             placed = true;
         }
-        if (!placed)
-            throw InputError(req.what + ": could not place particle " + std::to_string(k + 1) +
-                             " of " + std::to_string(req.count) +
-                             " at random without overlap after " + std::to_string(max_attempts) +
-                             " attempts; the region is too crowded for random placement "
-                             "(use a lattice, or a larger box)");
+        if (!placed) throw InputError(crowded_message(req, k, total, max_attempts));
     }
 }
 

@@ -6,6 +6,8 @@
 #include "pedesis/io/config_table.hpp"
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/quantities.hpp"
+#include "pedesis/setup/lattice.hpp"
+#include "pedesis/soft/integrator_set.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
 #include <fmt/format.h>
@@ -75,6 +77,22 @@ void read_velocity_keys(ConfigTable& t, SpeciesConfig& s, std::size_t d) {
                                  "energy would overflow)");
 }
 
+// A placement is checked where the config writes it, so that a typo is reported at its
+// line ([initial] positions or a species' own).
+void check_positions(const std::string& positions, const std::string& where, const RunConfig& c) {
+    if (positions == "random" || positions == "point") return;
+    if (positions == "file" && c.initial_file) return;
+    const int dim = c.dimension;
+    try {
+        parse_lattice(positions, dim);
+    } catch (const InputError&) {
+        throw InputError(fmt::format(
+            "{}: '{}' is not a placement: give random, point (with position = [..]), a lattice "
+            "({}) or [initial] file = \"...\"",
+            where, positions, dim == 2 ? "square or hexagonal in 2D" : "sc or fcc in 3D"));
+    }
+}
+
 void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults) {
     auto list = root.tables("species");
     if (list.empty()) {
@@ -114,7 +132,10 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
         s.mass = m.value_or(1.0);
         if (!(s.mass > 0))
             throw InputError(t.where("mass") + ": must be positive (inf makes a fixed obstacle)");
-        if (auto p = t.string("positions")) s.positions = *p;
+        if (auto p = t.string("positions")) {
+            check_positions(*p, t.where("positions"), c);
+            s.positions = *p;
+        }
         if (auto r = t.table("region")) {
             s.region_lo = r->numbers("lo", d);
             s.region_hi = r->numbers("hi", d);
@@ -292,6 +313,8 @@ void read_event_output(const toml::table& doc, ConfigTable& root, RunConfig& c) 
     }
 }
 
+std::string other_engine_note(const std::string& key, const RunConfig& c); // (below)
+
 // [neighbor_list], [[force]], [[torque]], [[integrator]], [run] and [output] of the soft
 // engines (intervals in steps).
 void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c) {
@@ -312,36 +335,27 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
     for (auto& t : root.tables("integrator"))
         c.integrators.push_back(read_plugin(t, PluginKind::integrator));
 
-    // exactly one integrator moves the positions, and it is the one `dynamics` names
-    std::vector<std::string> movers;
-    bool rotates = false;
-    for (const auto& i : c.integrators) {
-        if (i.name == "brownian_rotation") {
-            if (rotates) throw InputError(i.where + ": a second brownian_rotation integrator");
-            rotates = true;
-        } else {
-            movers.push_back(i.name);
-            if (movers.size() > 1)
-                throw InputError(i.where + ": a second position integrator ('" + movers[0] +
-                                 "' is already there); give exactly one");
-        }
-    }
-    if (movers.empty())
-        throw InputError(c.file + ": dynamics = \"" + c.dynamics +
-                         "\" needs an [[integrator]] "
-                         "with name = \"" +
-                         c.dynamics + "\"");
-    if (movers[0] != c.dynamics)
+    // the rule the Python Evolver follows too (soft/integrator_set.hpp), and the position
+    // integrator is the one `dynamics` names
+    for (std::size_t k = 0; k < c.integrators.size(); ++k)
+        check_integrator_added({c.integrators.begin(), c.integrators.begin() + k}, c.integrators[k],
+                               PluginNaming::config);
+    check_integrators_complete(c.integrators, c.torques,
+                               c.file + ": dynamics = \"" + c.dynamics +
+                                   "\" needs an [[integrator]] with name = \"" + c.dynamics + "\"",
+                               PluginNaming::config);
+    const auto mover = std::find_if(c.integrators.begin(), c.integrators.end(), moves_positions);
+    if (mover->name != c.dynamics)
         throw InputError(root.where("dynamics") + ": is '" + c.dynamics +
-                         "' but the position integrator is '" + movers[0] + "'");
-    if (!c.torques.empty() && !rotates)
-        throw InputError(c.torques[0].where + ": a torque turns nothing without a "
-                                              "brownian_rotation integrator");
+                         "' but the position integrator is '" + mover->name + "'");
 
     auto run = root.table("run");
     if (!run) throw InputError(c.file + ": missing [run] table (give steps and dt)");
     c.steps = read_count(*run, "steps", 0, true);
-    if (!run->has("steps")) throw InputError(run->where("steps") + ": is required");
+    if (!run->has("steps"))
+        throw InputError(run->where("steps") + ": is required" +
+                         (run->has("time") ? " (run.time: " + other_engine_note("run.time", c) + ")"
+                                           : std::string()));
     c.dt = run->required_number("dt");
     if (!(c.dt > 0)) throw InputError(run->where("dt") + ": must be positive");
     if (auto device = run->string("device")) {
@@ -396,11 +410,73 @@ void check_particle_budget(const RunConfig& c) {
     double volume = 1.0;
     for (double l : c.box_lengths) volume *= l;
     const double densest = c.dimension == 2 ? 0.9069 : 0.7405; // hexagonal / fcc packing
-    if (filled / volume > densest)
-        throw InputError(fmt::format("{}: [[species]]: the particles would fill {:.4g} of the box; "
-                                     "hard {} cannot fill more than {} of it",
-                                     c.file, filled / volume,
-                                     c.dimension == 2 ? "disks" : "spheres", densest));
+    if (filled / volume > densest) {
+        // the box that would hold them at close packing, as a cube (square) of this shape
+        const double grow = std::pow(filled / volume / densest, 1.0 / c.dimension);
+        std::string lengths;
+        for (double l : c.box_lengths)
+            lengths += fmt::format("{}{:.4g}", lengths.empty() ? "" : " x ", l * grow);
+        throw InputError(fmt::format(
+            "{}: [[species]]: the particles would fill {:.4g} of the box (packing fraction "
+            "{:.4g}: their {} add up to {:.4g} times the box's); hard {} cannot fill more than "
+            "{} of it (close packing). Give a box of at least {} (larger still to place them "
+            "at random: that works up to about {}), or fewer particles",
+            c.file, filled / volume, filled / volume, c.dimension == 2 ? "areas" : "volumes",
+            filled / volume, c.dimension == 2 ? "disks" : "spheres", densest, lengths,
+            c.dimension == 2 ? "0.5" : "0.35"));
+    }
+}
+
+// Keys that some engines read and others do not: a config that gives one to the wrong
+// engine is told whose key it is, and what this engine takes instead, rather than only
+// "unknown key" (a soft config with [run] time, an event config with [[force]]).
+struct EngineKey {
+    const char* key;          // full key, as ConfigTable names it
+    const char* engines;      // the dynamics that read it, as a config names them
+    const char* soft_instead; // for a soft config (brownian, langevin, nve): what to give
+    const char* hard_instead; // for an event or stepped config
+};
+
+constexpr EngineKey engine_keys[] = {
+    {"neighbor_list", "brownian, langevin and nve", nullptr, nullptr},
+    {"force", "brownian, langevin and nve", nullptr,
+     "hard particles interact by contact alone (their radius in [[species]])"},
+    {"torque", "brownian, langevin and nve", nullptr, nullptr},
+    {"integrator", "brownian, langevin and nve", nullptr,
+     "the event engine is exact; the stepped engine's step is [stepped] dt"},
+    {"run.steps", "stepped, brownian, langevin and nve", nullptr,
+     "stop the event engine on run.time, run.collisions_per_particle or run.energy_fraction"},
+    {"run.dt", "brownian, langevin and nve", nullptr,
+     "the event engine has no time step; the stepped engine's is [stepped] dt"},
+    {"run.device", "brownian, langevin and nve", nullptr, "the hard engines run on the CPU"},
+    {"output.log_every", "brownian, langevin and nve", nullptr,
+     "output.log_interval (in time units)"},
+    {"output.snapshot_every", "brownian, langevin and nve", nullptr,
+     "output.snapshot_interval (in time units)"},
+    {"output.checkpoint_every", "brownian, langevin and nve", nullptr,
+     "output.checkpoint_interval (in time units)"},
+    {"event", "event", "the soft engines' terms are [[force]], [[torque]] and [[integrator]]",
+     "[stepped] (this config's dynamics)"},
+    {"run.time", "event and stepped", "the run lasts run.steps x run.dt", nullptr},
+    {"run.collisions_per_particle", "event and stepped", "give run.steps", nullptr},
+    {"run.energy_fraction", "event", "give run.steps", nullptr},
+    {"run.grown", "event", "give run.steps", nullptr},
+    {"output.log_interval", "event and stepped", "output.log_every (in steps)", nullptr},
+    {"output.snapshot_interval", "event and stepped", "output.snapshot_every (in steps)", nullptr},
+    {"output.checkpoint_interval", "event and stepped", "output.checkpoint_every (in steps)",
+     nullptr},
+    {"output.histogram_bins", "event and stepped", nullptr, nullptr},
+    {"output.histogram_start", "event and stepped", nullptr, nullptr},
+};
+
+std::string other_engine_note(const std::string& key, const RunConfig& c) {
+    for (const EngineKey& k : engine_keys) {
+        if (key != k.key) continue;
+        const char* instead = c.soft() ? k.soft_instead : k.hard_instead;
+        return fmt::format("it is read by dynamics = {}, and this config runs \"{}\"{}{}",
+                           k.engines, c.dynamics, instead ? "; " : "", instead ? instead : "");
+    }
+    return {};
 }
 
 } // namespace
@@ -412,6 +488,8 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     RunConfig c;
     c.scripted = scripted;
     c.file = path;
+    // (c.dynamics is read below, before any table could be finished)
+    root.explain_unknown_keys([&c](const std::string& key) { return other_engine_note(key, c); });
     const auto dim = root.integer("dimension").value_or(2);
     if (dim != 2 && dim != 3) throw InputError(root.where("dimension") + ": must be 2 or 3");
     c.dimension = static_cast<int>(dim);
@@ -430,7 +508,10 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     defaults.positions = "random";
     defaults.velocities = c.soft() ? "zero" : "maxwell_boltzmann";
     if (auto init = root.table("initial")) {
-        if (auto p = init->string("positions")) defaults.positions = *p;
+        if (auto p = init->string("positions")) {
+            check_positions(*p, init->where("positions"), c);
+            defaults.positions = *p;
+        }
         read_velocity_keys(*init, defaults, static_cast<std::size_t>(c.dimension));
         if (defaults.velocity) defaults.velocities = "given";
         if (auto f = init->string("file")) {

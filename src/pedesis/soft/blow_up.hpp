@@ -9,6 +9,17 @@
 #include <sstream>
 #include <string>
 
+namespace pedesis {
+
+// A step that moved a particle further than the skin, or to a non-finite place: a
+// RunError that the evolver completes with its likely cause (soft/blow_up_cause.hpp).
+class BlowUp : public RunError {
+  public:
+    using RunError::RunError;
+};
+
+} // namespace pedesis
+
 namespace pedesis::detail {
 
 // Lowest storage index whose move was not finite or exceeded max_move; the caller throws.
@@ -21,8 +32,8 @@ template <int D>
         m << " got a non-finite displacement (the run blew up)";
     else
         m << " moved " << norm(move) << " in one step, more than " << max_move
-          << " (the neighbour-list skin); reduce dt";
-    throw RunError(m.str());
+          << " (the neighbour-list skin)";
+    throw BlowUp(m.str());
 }
 
 // The lowest storage index whose move was too long, and that move, gathered from the

@@ -4,6 +4,7 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/inside_box.hpp"
 #include "pedesis/core/interrupt.hpp"
+#include "pedesis/soft/blow_up.hpp"
 #include "pedesis/spatial/spatial_sort.hpp"
 
 #include <algorithm>
@@ -214,6 +215,20 @@ template <int D> void Evolver<D>::compute_forces() {
 
 template <int D> void Evolver<D>::evolve(double dt) {
     if (!(dt > 0.0 && std::isfinite(dt))) throw InputError("dt must be a positive finite number");
+    // what a blow-up's message will need, once, at the first step (under a decomposition
+    // each process holds a share only, and the blow-up comes back as the agreed message)
+    if (!start_.measured && !domain_) {
+        if (!nl_) ensure_list();
+        start_ = measure_start(s_, *nl_, forces_);
+    }
+    try {
+        step(dt);
+    } catch (const BlowUp& e) {
+        throw BlowUp(e.what() + blow_up_cause(start_, s_.step, dt, D));
+    }
+}
+
+template <int D> void Evolver<D>::step(double dt) {
     if (domain_) {
         evolve_shared(dt);
         return;

@@ -3,6 +3,7 @@
 // and advances the state one step at a time:
 //   neighbour-list check, integrator pre-steps, forces and torques (reset, then every
 //   term), integrator post-steps, periodic wrap with image counters.
+#include "pedesis/soft/blow_up_cause.hpp"
 #include "pedesis/soft/device_stepper.hpp"
 #include "pedesis/soft/domain_decomposition.hpp"
 #include "pedesis/soft/plugins.hpp"
@@ -101,6 +102,7 @@ template <int D> class Evolver {
     const std::vector<std::unique_ptr<Integrator<D>>>& integrators() const { return integrators_; }
 
   private:
+    void step(double dt); // evolve's step, without the blow-up's cause
     PairTotals pair_totals_within_cutoff();
     // The terms' shares beyond their cutoffs, for the whole system's composition.
     void add_tail_corrections(PairTotals& t);
@@ -132,6 +134,7 @@ template <int D> class Evolver {
     std::vector<std::unique_ptr<ForceTerm<D>>> forces_;
     std::vector<std::unique_ptr<TorqueTerm<D>>> torques_;
     std::vector<std::unique_ptr<Integrator<D>>> integrators_;
+    StartFacts start_; // for a blow-up's message: measured before the first step
 };
 
 extern template class Evolver<2>;

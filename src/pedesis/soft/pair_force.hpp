@@ -49,6 +49,11 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
         return r;
     }
 
+    double core(const SoftState<D>& s, std::size_t a, std::size_t b) const override {
+        const auto& table = s.p.species_table;
+        return pair(a, b).core(table[a].radius + table[b].radius);
+    }
+
     void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const override {
         const auto& table = s.p.species_table;
         check_species(table.size());

@@ -38,6 +38,9 @@ struct HarmonicPair {
     bool operator==(const HarmonicPair& o) const { return k == o.k && a == o.a; }
     PEDESIS_HD double range(double rsum) const { return a > 0.0 ? a : rsum; }
     double max_range(double max_rsum) const { return range(max_rsum); }
+    // the distance inside which the pair repels (what a blow-up's message measures
+    // overlaps and the density against): its whole range
+    double core(double rsum) const { return range(rsum); }
     // F/r for a pair inside the range (the pair loop filters by range first)
     PEDESIS_HD double force_over_r(double r2, double rsum) const {
         return force_over_r_at(std::sqrt(r2), rsum);
@@ -65,6 +68,7 @@ struct WcaPair {
     bool operator==(const WcaPair& o) const { return epsilon == o.epsilon && sigma == o.sigma; }
     PEDESIS_HD double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return std::pow(2.0, 1.0 / 6.0) * sig(max_rsum); }
+    double core(double rsum) const { return sig(rsum); }
     template <class T> PEDESIS_HD_INLINE T force_over_r(T r2, double rsum) const {
         return lj_force_over_r(epsilon, sig(rsum), r2);
     }
@@ -114,6 +118,7 @@ struct LjPair {
     }
     PEDESIS_HD double sig(double rsum) const { return sigma > 0.0 ? sigma : rsum; }
     double max_range(double max_rsum) const { return cutoff * sig(max_rsum); }
+    double core(double rsum) const { return sig(rsum); }
     template <class T> PEDESIS_HD_INLINE T force_over_r(T r2, double rsum) const {
         return lj_force_over_r(epsilon, sig(rsum), r2);
     }

@@ -1,0 +1,64 @@
+#include "pedesis/soft/integrator_set.hpp"
+
+#include "pedesis/core/error.hpp"
+#include "pedesis/soft/plugin_registry.hpp"
+
+#include <algorithm>
+
+namespace pedesis {
+
+namespace {
+
+constexpr const char* rotation = "brownian_rotation";
+
+std::string named(const std::string& name, PluginNaming naming) {
+    if (naming == PluginNaming::config) return "'" + name + "'";
+    for (const PluginInfo& info : plugin_catalogue())
+        if (info.kind == PluginKind::integrator && name == info.name)
+            return std::string(info.python_class) + " ('" + name + "')";
+    return "'" + name + "'";
+}
+
+} // namespace
+
+bool moves_positions(const PluginSpec& integrator) {
+    return integrator.name != rotation;
+}
+
+std::string position_integrators(PluginNaming naming) {
+    std::string s;
+    for (const PluginInfo& info : plugin_catalogue())
+        if (info.kind == PluginKind::integrator && std::string(info.name) != rotation)
+            s += (s.empty() ? "" : ", ") +
+                 std::string(naming == PluginNaming::config ? info.name : info.python_class);
+    return s;
+}
+
+void check_integrator_added(const std::vector<PluginSpec>& present, const PluginSpec& added,
+                            PluginNaming naming) {
+    for (const PluginSpec& p : present) {
+        if (!moves_positions(added) && !moves_positions(p))
+            throw InputError(added.where + ": a second " + named(rotation, naming) +
+                             " integrator (the directors would turn twice per step); give one");
+        if (moves_positions(added) && moves_positions(p))
+            throw InputError(added.where + ": a second position integrator (" +
+                             named(p.name, naming) +
+                             " is already there, and both would move the particles every step); "
+                             "give exactly one of " +
+                             position_integrators(naming));
+    }
+}
+
+void check_integrators_complete(const std::vector<PluginSpec>& integrators,
+                                const std::vector<PluginSpec>& torques, const std::string& missing,
+                                PluginNaming naming) {
+    if (std::none_of(integrators.begin(), integrators.end(), moves_positions))
+        throw InputError(missing);
+    const bool rotates = std::any_of(integrators.begin(), integrators.end(),
+                                     [](const PluginSpec& i) { return !moves_positions(i); });
+    if (!torques.empty() && !rotates)
+        throw InputError(torques.front().where + ": a torque turns nothing without a " +
+                         named(rotation, naming) + " integrator");
+}
+
+} // namespace pedesis
