@@ -145,10 +145,6 @@ def check(doc, setup):
 
 
 if __name__ == "__main__":
-    import argparse
-    parser = argparse.ArgumentParser(description="Run a document's console blocks.")
-    parser.add_argument("documents", nargs="+")
-    parser.add_argument("--setup", action="append", default=[],
-                        help="a command to run in the scratch directory first")
-    arguments = parser.parse_args()
+    from run_doc_snippets import command_line
+    arguments = command_line("Run a document's console blocks.")
     sys.exit(max(check(d, arguments.setup) for d in arguments.documents))

@@ -67,11 +67,16 @@ def main(doc, setup=()):
     return 0
 
 
-if __name__ == "__main__":
+def command_line(description):
+    """The documents and --setup commands, as this runner and run_doc_console.py take them."""
     import argparse
-    parser = argparse.ArgumentParser(description="Run a document's Python blocks.")
+    parser = argparse.ArgumentParser(description=description)
     parser.add_argument("documents", nargs="+")
     parser.add_argument("--setup", action="append", default=[],
                         help="a command to run in the scratch directory first")
-    arguments = parser.parse_args()
+    return parser.parse_args()
+
+
+if __name__ == "__main__":
+    arguments = command_line("Run a document's Python blocks.")
     sys.exit(max(main(d, arguments.setup) for d in arguments.documents))
