@@ -88,6 +88,18 @@ class Simulation:
 
     out_dir = None  # the run directory (from_file's out)
 
+    # What a script may assign; anything else raises, since a run's parameters live in
+    # the engine: sim.temperature = 2 would otherwise change nothing, silently.
+    _settable = ("_run", "writers", "callbacks", "out_dir")
+
+    def __setattr__(self, name, value):
+        if name not in self._settable:
+            steer = (f"; change a running parameter with sim.set({name!r}, {value!r})"
+                     if name in self._run.steerable else
+                     "; set() changes what `steerable` lists, the config file the rest")
+            raise AttributeError(f"Simulation has no setting {name!r}{steer}")
+        object.__setattr__(self, name, value)
+
     def _repr_html_(self):
         """A notebook cell ending with the simulation shows its run directory as it is
         now: the frames written so far (pedesis.show); before the first frame, the usual

@@ -149,3 +149,16 @@ def test_the_engine_objects_refuse_unknown_attributes(system):
     for obj, attribute in ((system, "dt"), (e, "dt"), (system, "box")):
         with pytest.raises(AttributeError):
             setattr(obj, attribute, 1.0)
+
+
+def test_a_simulation_refuses_settings_it_would_ignore(tmp_path, repo):
+    sim = pedesis.Simulation.from_file(repo / "examples" / "abp_tutorial.toml",
+                                       out=tmp_path / "abp")
+    with pytest.raises(AttributeError, match=r"sim.set\('alpha', 2.0\)"):
+        sim.alpha = 2.0  # steerable: the message shows the call that takes effect
+    with pytest.raises(AttributeError, match="no setting 'dt'"):
+        sim.dt = 0.001
+    with pytest.raises(AttributeError, match="no setting 'step'"):
+        sim.step = 5
+    sim.out_dir = tmp_path / "abp"  # what from_file sets stays settable
+    assert sim.step == 0
