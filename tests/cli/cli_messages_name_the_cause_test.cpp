@@ -94,8 +94,8 @@ TEST_F(Messages, AnOverfullBoxSaysWhichBoxWouldDo) {
     c.replace(c.find("count = 50"), 10, "count = 800");
     const CliResult r = run(c);
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    expect_in(r, {"would fill 6.283 of the box", "packing fraction", "close packing",
-                  "Give a box of at least 26.32 x 26.32"});
+    expect_in(r, {"cfg.toml:8:9: key 'species[0].count': the particles would fill 6.283 of the box",
+                  "packing fraction", "close packing", "Give a box of at least 26.32 x 26.32"});
 }
 
 TEST_F(Messages, ABlowUpFromAnOverlappingStartSaysSo) {

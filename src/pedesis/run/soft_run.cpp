@@ -89,9 +89,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
           console_(console) {
         for (std::size_t a = 0; a < c_.periodic.size(); ++a)
             if (!c_.periodic[a])
-                throw InputError(c_.file + ": [box] boundary: the " + c_.dynamics +
-                                 " engine needs periodic axes (axis " + std::to_string(a) +
-                                 " is a wall)");
+                throw InputError((c_.boundary_where.empty() ? c_.file : c_.boundary_where) +
+                                 ": the " + c_.dynamics + " engine needs periodic axes (axis " +
+                                 std::to_string(a) + " is a wall)");
         const std::vector<Species> table = species_table(c_);
         if (!o_.restart) state_ = build_soft_state<D>(c_, start ? &*start : nullptr);
         start.reset(); // (the state holds the particles now)
@@ -131,8 +131,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         }
         if (on_gpu()) {
             if (domain_)
-                throw InputError(c_.file + ": device = \"gpu\" runs on one process; start it "
-                                           "without mpirun");
+                throw InputError((o_.device || c_.device_where.empty() ? c_.file + ": device"
+                                                                       : c_.device_where) +
+                                 " = \"gpu\" runs on one process; start it without mpirun");
             // a restored run's list reference makes the device's first list the same
             evolver_->set_device(
                 make_gpu_stepper<D>(state_, *evolver_, evolver_->list_reference()));
@@ -586,7 +587,21 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 template <int D>
 EngineSetup<D> soft_engine_setup(const RunConfig& config, const RunOptions& options,
                                  std::ostream& console) {
-    auto engine = std::make_unique<SoftRunEngine<D>>(config, options, console);
+    std::unique_ptr<SoftRunEngine<D>> engine;
+    try {
+        engine = std::make_unique<SoftRunEngine<D>>(config, options, console);
+    } catch (const InputError& e) {
+        // the neighbour list knows the box and the cutoff, not the file they came from
+        const std::string what = e.what();
+        if (!what.starts_with("neighbour list:")) throw;
+        const bool box_from_file = config.box_lengths.empty() && config.initial_file;
+        throw InputError(fmt::format(
+            "{}: {}; make the box{} larger, or the cutoff ([neighbor_list] r_cut, the forces' "
+            "ranges) or [neighbor_list] skin smaller",
+            config.file, what,
+            box_from_file ? " (of the [initial] file " + *config.initial_file + ")"
+                          : std::string(" ([box] length)")));
+    }
     EngineSetup<D> setup{nullptr, engine->schedule(), engine->outputs()};
     setup.engine = std::move(engine);
     return setup;

@@ -45,6 +45,7 @@ void read_box(ConfigTable& t, RunConfig& c) {
     if (!(volume < 1e300))
         throw InputError(box->where(box->has("lengths") ? "lengths" : "length") +
                          ": the box is too large to simulate (its volume overflows)");
+    if (box->has("boundary")) c.boundary_where = box->where("boundary");
     const auto b = box->strings("boundary", d).value_or(std::vector<std::string>(d, "periodic"));
     for (const auto& s : b) {
         if (s != "periodic" && s != "wall")
@@ -120,6 +121,7 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
                 throw InputError(t.where("count") + ": " + std::to_string(*n) +
                                  " is more particles than the 4294967295 pedesis can number");
             s.count = static_cast<std::size_t>(*n);
+            s.count_where = t.where("count");
         }
         s.radius = t.number("radius", 0.5);
         if (!(s.radius > 0)) throw InputError(t.where("radius") + ": must be positive");
@@ -363,6 +365,7 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
             throw InputError(run->where("device") + ": must be \"cpu\" or \"gpu\", not \"" +
                              *device + "\"");
         c.device = *device;
+        c.device_where = run->where("device");
     }
     run->finish();
 
@@ -383,9 +386,11 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
 void check_particle_budget(const RunConfig& c) {
     std::uint64_t n = 0;
     double filled = 0.0;
+    std::string where = c.file; // the last count given: where the sum went too far
     for (const auto& s : c.species) {
         if (!s.count) continue;
         n += *s.count;
+        where = s.count_where;
         const double r = s.radius;
         filled += static_cast<double>(*s.count) * (c.dimension == 2
                                                        ? std::numbers::pi * r * r
@@ -393,19 +398,19 @@ void check_particle_budget(const RunConfig& c) {
     }
     if (n == 0) return;
     if (n > 0xffffffffull)
-        throw InputError(fmt::format("{}: [[species]] count: N = {} particles, more than the "
+        throw InputError(fmt::format("{}: N = {} particles, more than the "
                                      "4294967295 pedesis can number",
-                                     c.file, n));
+                                     where, n));
     // bytes per particle at the largest point of a run, from docs/performance.md's
     // measurements with room to spare (the event engine keeps neighbour lists and events)
     const double per_particle = c.soft() ? 400.0 : c.dynamics == "stepped" ? 300.0 : 600.0;
     const double need = static_cast<double>(n) * per_particle;
     const double have = physical_memory_bytes();
     if (have > 0.0 && need > have)
-        throw InputError(fmt::format("{}: [[species]] count: N = {} particles need about {:.3g} GB "
+        throw InputError(fmt::format("{}: N = {} particles need about {:.3g} GB "
                                      "({:g} bytes each, an estimate), more than this machine's "
                                      "{:.3g} GB of memory",
-                                     c.file, n, need / 1e9, per_particle, have / 1e9));
+                                     where, n, need / 1e9, per_particle, have / 1e9));
     if (c.soft() || c.box_lengths.empty()) return;
     double volume = 1.0;
     for (double l : c.box_lengths) volume *= l;
@@ -417,11 +422,11 @@ void check_particle_budget(const RunConfig& c) {
         for (double l : c.box_lengths)
             lengths += fmt::format("{}{:.4g}", lengths.empty() ? "" : " x ", l * grow);
         throw InputError(fmt::format(
-            "{}: [[species]]: the particles would fill {:.4g} of the box (packing fraction "
+            "{}: the particles would fill {:.4g} of the box (packing fraction "
             "{:.4g}: their {} add up to {:.4g} times the box's); hard {} cannot fill more than "
             "{} of it (close packing). Give a box of at least {} (larger still to place them "
             "at random: that works up to about {}), or fewer particles",
-            c.file, filled / volume, filled / volume, c.dimension == 2 ? "areas" : "volumes",
+            where, filled / volume, filled / volume, c.dimension == 2 ? "areas" : "volumes",
             filled / volume, c.dimension == 2 ? "disks" : "spheres", densest, lengths,
             c.dimension == 2 ? "0.5" : "0.35"));
     }

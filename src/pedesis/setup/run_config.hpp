@@ -13,6 +13,7 @@ namespace pedesis {
 struct SpeciesConfig {
     std::string name;
     std::optional<std::size_t> count; // may come from the initial-configuration file
+    std::string count_where;          // "file:line:col: key '...count'", for messages
     double radius = 0.5;
     double mass = 1.0;
     // placement (defaults from [initial])
@@ -38,6 +39,7 @@ struct RunConfig {
 
     std::vector<double> box_lengths; // soft engines: may be empty (box from the initial file)
     std::vector<bool> periodic;
+    std::string boundary_where; // "file:line:col: key 'box.boundary'" if given, for messages
 
     std::vector<SpeciesConfig> species;
     SpeciesConfig species_defaults; // from [initial], for species a soft run takes from its file
@@ -87,6 +89,7 @@ struct RunConfig {
     double list_skin = 0.5;
     std::uint64_t sort_every = 500; // steps between space-filling-curve sorts (0: never)
     std::string device = "cpu";     // soft engines: "cpu" or "gpu" (gpu/gpu_stepper.hpp)
+    std::string device_where;       // of [run] device if given, for messages
     std::uint64_t steps = 0;
     double dt = 0.0; // also the time step of the stepped engine
     std::uint64_t log_every = 100;
