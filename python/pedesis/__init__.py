@@ -24,6 +24,7 @@ try:
 except ImportError:  # the source tree's python/, unbuilt: no version to tell
     __version__ = "unknown"
 from .show import open_run, show, movie  # noqa: F401  (pure Python: the CLI draws)
+from .box import Box  # noqa: F401  (pure Python: pedesis.analyze takes it too)
 try:
     from . import _pedesis  # noqa: F401
 except ImportError as _error:
@@ -39,4 +40,4 @@ else:
     from ._engines import __all__ as _engine_names
     from . import builder  # noqa: F401  (needs the names above)
 
-    __all__ = [*_engine_names, "builder", "open_run", "show", "movie"]
+    __all__ = [*_engine_names, "builder", "open_run", "show", "movie", "Box"]

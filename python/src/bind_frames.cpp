@@ -2,6 +2,7 @@
 // a GSD or extended-XYZ trajectory by the engines' own writers (io/trajectory_file.hpp),
 // so that the file is the one `pedesis run` would write for the same states.
 #include "bindings.hpp"
+#include "box_object.hpp"
 #include "errors.hpp"
 
 #include "pedesis/core/box.hpp"
@@ -47,11 +48,12 @@ template <int D> void write(TrajectoryFile<D>& file, const py::dict& frame, std:
     const auto lengths = frame["box"].cast<std::vector<double>>();
     if (lengths.size() != static_cast<std::size_t>(D))
         throw InputError(fmt::format("write_frames: frame {}: box must hold {} lengths", index, D));
+    const std::vector<bool> flags = box_periodic(py::object(frame["box"]), D);
     Vec<D> L{};
     std::array<bool, D> periodic{};
     for (int a = 0; a < D; ++a) {
         L[a] = lengths[static_cast<std::size_t>(a)];
-        periodic[static_cast<std::size_t>(a)] = true;
+        periodic[static_cast<std::size_t>(a)] = flags[static_cast<std::size_t>(a)];
         if (!(std::isfinite(L[a]) && L[a] > 0))
             throw InputError(fmt::format("write_frames: frame {}: box lengths must be "
                                          "positive and finite",

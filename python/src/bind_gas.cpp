@@ -1,5 +1,6 @@
 // pedesis.Gas: the event-driven and time-stepped hard-particle engines from Python.
 #include "bindings.hpp"
+#include "box_object.hpp"
 #include "errors.hpp"
 #include "gas_model.hpp"
 #include "script_trigger.hpp"
@@ -48,7 +49,7 @@ py::dict frame(const GasModel& g) {
     out["time"] = g.time();
     // (as the engines' frames count: the event engine has no steps, its collisions stand in)
     out["step"] = g.dynamics() == "event" ? g.pair_collisions() : g.steps();
-    out["box"] = g.box();
+    out["box"] = box_object(g.box(), g.periodic());
     std::vector<std::string> names;
     for (const auto& sp : g.species()) names.push_back(sp.name);
     out["species"] = names;
@@ -70,6 +71,34 @@ std::unique_ptr<PyGas> make(const RunConfig& c, const std::string& source) {
     return g;
 }
 
+// Gas(text) given a file's name instead of its text: the TOML parser would report its
+// first character, so say what was meant. One line that ends in .toml, or that names a
+// file and is not a config.
+InputError path_given(const std::string& path) {
+    return InputError(fmt::format("Gas(...) takes the config's text; to read a file use "
+                                  "pedesis.Gas.from_file('{}')",
+                                  path));
+}
+
+std::unique_ptr<PyGas> from_text(const std::string& text) {
+    const auto first = text.find_first_not_of(" \t\r\n");
+    const auto last = text.find_last_not_of(" \t\r\n");
+    const std::string line = first == std::string::npos ? "" : text.substr(first, last - first + 1);
+    const bool one_line = !line.empty() && line.find('\n') == std::string::npos;
+    if (one_line && line.find('=') == std::string::npos && line.size() > 5 &&
+        line.compare(line.size() - 5, 5, ".toml") == 0)
+        throw path_given(line);
+    RunConfig c;
+    try {
+        c = parse_run_config(text, "<Gas config>", true);
+    } catch (const InputError&) {
+        std::error_code ec;
+        if (one_line && std::filesystem::is_regular_file(line, ec)) throw path_given(line);
+        throw;
+    }
+    return make(c, "<Gas config>");
+}
+
 } // namespace
 
 void bind_gas(py::module_& m) {
@@ -83,8 +112,10 @@ reads (docs/config.md), with the same checks; [run] and [output] are not needed 
 (the stop conditions are run()'s arguments). Measured quantities are numpy arrays,
 copies in tag order.
 )doc")
-        .def(py::init([](const std::string& text) {
-                 return make(parse_run_config(text, "<Gas config>", true), "<Gas config>");
+        .def(py::init(&from_text), py::arg("config"))
+        // (a pathlib.Path is no text: the same pointer to from_file)
+        .def(py::init([](const std::filesystem::path& path) -> std::unique_ptr<PyGas> {
+                 throw path_given(path.string());
              }),
              py::arg("config"))
         .def_static(
@@ -132,8 +163,9 @@ within a few thousand collisions (event), with the gas in a valid state.
             "N", [](const PyGas& g) { return g.model->size(); }, "Number of particles.")
         .def("__len__", [](const PyGas& g) { return g.model->size(); })
         .def_property_readonly(
-            "box", [](const PyGas& g) { return g.model->box(); },
-            "Box lengths; the box is centred at the origin.")
+            "box", [](const PyGas& g) { return box_object(g.model->box(), g.model->periodic()); },
+            "The box (a pedesis.Box): lengths, and periodic per axis (False: walls); it reads as "
+            "the list of lengths. The box is centred at the origin.")
         .def_property_readonly(
             "time", [](const PyGas& g) { return g.model->time(); }, "Simulated time.")
         .def_property_readonly(
@@ -249,8 +281,8 @@ frame along conserved axes, averaged over both ends of the interval.
             "frame", [](const PyGas& g) { return frame(*g.model); },
             R"doc(
 The state now as a dict of numpy arrays in tag order, laid out as Simulation.frame():
-time, step (the event engine: pair collisions), box, species (names), type, position,
-velocity, radius, mass.
+time, step (the event engine: pair collisions), box (a pedesis.Box), species (names),
+type, position, velocity, radius, mass.
 )doc")
         .def(
             "_add_recording",

@@ -1,6 +1,7 @@
 // pedesis._Run: a run of any engine from a config file, driven by the one Simulation loop
 // of the CLI (run/run.hpp). pedesis/simulation.py wraps it as pedesis.Simulation.
 #include "bindings.hpp"
+#include "box_object.hpp"
 #include "errors.hpp"
 #include "script_trigger.hpp"
 
@@ -64,7 +65,9 @@ py::dict frame_dict(const FrameArrays& f) {
     py::dict out;
     out["time"] = f.time;
     out["step"] = f.step;
-    out["box"] = std::vector<double>(f.box.begin(), f.box.begin() + f.dimension);
+    out["box"] =
+        box_object(std::vector<double>(f.box.begin(), f.box.begin() + f.dimension),
+                   std::vector<bool>(f.periodic.begin(), f.periodic.begin() + f.dimension));
     out["species"] = f.species;
     out["type"] = array(f.type, n, 1);
     out["position"] = vectors(f.position);

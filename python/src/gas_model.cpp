@@ -52,6 +52,11 @@ template <int D, class Engine> class Gas : public GasModel {
         for (int a = 0; a < D; ++a) L.push_back(engine_->box().length(a));
         return L;
     }
+    std::vector<bool> periodic() const override {
+        std::vector<bool> p;
+        for (int a = 0; a < D; ++a) p.push_back(engine_->box().periodic(a));
+        return p;
+    }
     // the engine's table now: radii change while Lubachevsky-Stillinger growth runs
     const std::vector<Species>& species() const override {
         table_ = store().species_table;

@@ -40,6 +40,7 @@ class GasModel {
     virtual std::vector<double> velocities() const = 0; // N x dim
     virtual std::vector<std::uint16_t> types() const = 0;
     virtual std::vector<double> box() const = 0;
+    virtual std::vector<bool> periodic() const = 0; // per axis; false: walls
     virtual const std::vector<Species>& species() const = 0;
     virtual double time() const = 0;
     virtual std::uint64_t steps() const = 0; // 0 for the event engine

@@ -16,7 +16,8 @@ A console block is a transcript:
   Each command is its own shell: `cd` and variables do not carry over. A command ending
   in `\\` continues on the next line; a here-document (`<<'EOF'` … `EOF`) takes the
   lines up to its terminator, so a block can write the config it runs.
-* `pedesis` and `build/pedesis` mean $PEDESIS_BIN; `examples/` is the source tree's
+* `pedesis` and `build/pedesis` mean $PEDESIS_BIN, `python3` the interpreter running
+  this script; `examples/` is the source tree's
   (linked into the directory, read only by the commands).
 * The lines after a command, up to the next `$ ` or the block's end, are its expected
   output, stdout and stderr together as a terminal shows them, compared line by line
@@ -105,6 +106,8 @@ def environment(scratch):
     tools = pathlib.Path(scratch) / ".bin"
     tools.mkdir()
     (tools / "pedesis").symlink_to(pathlib.Path(binary).resolve())
+    # (the interpreter running this, Debian's with python3-gsd, for blocks that read files)
+    (tools / "python3").symlink_to(sys.executable)
     env = dict(os.environ)
     env["PATH"] = f"{tools}{os.pathsep}{env.get('PATH', '')}"
     return env

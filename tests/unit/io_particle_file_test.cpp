@@ -149,6 +149,37 @@ TEST_F(ParticleFileTest, PedesisXyzFramesReadBackToTheDigit) {
     expect_xyz_round_trip<3>(dir / "t3.xyz");
 }
 
+// A walled box comes back walled from either format (GSD's log/pedesis/periodic, XYZ's
+// pbc), and a file that does not say (HOOMD-blue's GSD, an XYZ without pbc) says nothing.
+template <int D> void expect_walls_read_back(const fs::path& dir) {
+    SoftState<D> s = two_species_state<D>(5);
+    std::array<bool, D> periodic{};
+    periodic.fill(true);
+    periodic[D - 1] = false;
+    s.box = Box<D>(s.box.lengths(), periodic);
+    {
+        GsdWriter<D> w(dir / "walled.gsd");
+        w.append(s.frame());
+        w.commit();
+    }
+    std::ofstream(dir / "walled.xyz") << xyz_frame(s.frame());
+    for (const char* name : {"walled.gsd", "walled.xyz"}) {
+        SCOPED_TRACE(name);
+        const ParticleFile<D> f = read_particle_file<D>(dir / name);
+        ASSERT_TRUE(f.periodic);
+        EXPECT_EQ(*f.periodic, periodic);
+    }
+}
+
+TEST_F(ParticleFileTest, WallsReadBackFromGsdAndXyz) {
+    expect_walls_read_back<2>(dir);
+    expect_walls_read_back<3>(dir);
+    const fs::path silent =
+        write("silent.xyz", "1\nLattice=\"10 0 0 0 20 0 0 0 30\" Properties=species:S:1:pos:R:3\n"
+                            "X 0.5 1.5 29.5\n");
+    EXPECT_FALSE(read_particle_file<3>(silent).periodic);
+}
+
 TEST_F(ParticleFileTest, XyzCellAtItsCornerIsCentred) {
     const fs::path path =
         write("corner.xyz", "2\nLattice=\"10 0 0 0 20 0 0 0 30\" Properties=species:S:1:pos:R:3 "

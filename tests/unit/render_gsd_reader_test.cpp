@@ -95,6 +95,9 @@ template <int D> void expect_frame(const SoftState<D>& s, const GsdFrame& g) {
         EXPECT_EQ(g.box[static_cast<std::size_t>(a)],
                   a < D ? static_cast<double>(static_cast<float>(s.box.length(a))) : 0.0);
     EXPECT_EQ(g.types, (std::vector<std::string>{"A", "Big"}));
+    std::array<bool, 3> periodic{false, false, false};
+    for (int a = 0; a < D; ++a) periodic[static_cast<std::size_t>(a)] = s.box.periodic(a);
+    EXPECT_EQ(g.periodic, periodic);
     ASSERT_EQ(g.size(), s.size());
     EXPECT_TRUE(g.velocity_stored);
     EXPECT_TRUE(g.orientation_stored);
@@ -152,6 +155,29 @@ TEST_F(GsdReaderTest, ReadsBackWhatTheWriterWrites3DPastTheFirstIndexBlock) {
     const GsdReader reader(file);
     ASSERT_EQ(reader.frames(), 20u);
     for (std::uint64_t k : {0u, 5u, 10u, 19u}) expect_frame(states[k], reader.frame(k));
+}
+
+TEST_F(GsdReaderTest, WalledAxesReadBackWalled) {
+    const fs::path file = dir / "t.gsd";
+    auto s2 = sample_state<2>(3, 0);
+    s2.box = Box<2>(s2.box.lengths(), {false, true});
+    auto s3 = sample_state<3>(4, 0);
+    s3.box = Box<3>(s3.box.lengths(), {true, false, false});
+    {
+        GsdWriter<2> w(file);
+        w.append(s2.frame());
+        w.append(s2.frame());
+        w.commit();
+    }
+    const GsdReader reader(file);
+    EXPECT_TRUE(reader.has_chunk(1, "log/pedesis/periodic")); // in every frame
+    for (std::uint64_t k : {0u, 1u}) expect_frame(s2, reader.frame(k));
+    {
+        GsdWriter<3> w(file);
+        w.append(s3.frame());
+        w.commit();
+    }
+    expect_frame(s3, GsdReader(file).frame(0));
 }
 
 TEST_F(GsdReaderTest, ReadsTheUnfinishedPartFileOfARunningWriter) {
@@ -219,6 +245,10 @@ with gsd.hoomd.open(name=sys.argv[0].replace("make.py", "py.gsd"), mode=mode) as
     t.append(frame(100, [[0.5, 0, 0], [1, 1.5, 0], [-2, 3, 0]], 1))
 with gsd.hoomd.open(name=sys.argv[0].replace("make.py", "bad.gsd"), mode=mode) as t:
     t.append(frame(0, [[0, 0, 0], [1, 1, 0], [-2, 3, 0]], 5))
+with gsd.hoomd.open(name=sys.argv[0].replace("make.py", "bad_walls.gsd"), mode=mode) as t:
+    f = frame(0, [[0, 0, 0], [1, 1, 0], [-2, 3, 0]], 1)
+    f.log["pedesis/periodic"] = [2, 1]
+    t.append(f)
 )PY";
 
 TEST_F(GsdReaderTest, ReadsAFileOfTheGsdPythonPackageFillingInFromFrameZero) {
@@ -240,6 +270,7 @@ TEST_F(GsdReaderTest, ReadsAFileOfTheGsdPythonPackageFillingInFromFrameZero) {
         EXPECT_EQ(f->mass, (std::vector<double>{1, 1, 1})); // the schema's default
         EXPECT_FALSE(f->velocity_stored);
         EXPECT_FALSE(f->orientation_stored);
+        EXPECT_FALSE(f->periodic); // HOOMD-blue's files do not say (its boxes are periodic)
     }
     EXPECT_EQ(f0.position[0], (std::array<double, 3>{0, 0, 0}));
     EXPECT_EQ(f1.position[0], (std::array<double, 3>{0.5, 0, 0}));
@@ -249,6 +280,12 @@ TEST_F(GsdReaderTest, ReadsAFileOfTheGsdPythonPackageFillingInFromFrameZero) {
     EXPECT_NE(what.find((dir / "bad.gsd").string() + ": frame 0: particle 2 has typeid 5"),
               std::string::npos)
         << what;
+    const std::string walls = error_of(dir / "bad_walls.gsd");
+    EXPECT_NE(walls.find((dir / "bad_walls.gsd").string() +
+                         ": frame 0: log/pedesis/periodic holds 2; each axis is 1 (periodic) "
+                         "or 0 (walls)"),
+              std::string::npos)
+        << walls;
 }
 
 TEST_F(GsdReaderTest, TruncatedFilesAreRefusedNamingTheFile) {

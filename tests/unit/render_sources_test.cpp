@@ -129,8 +129,9 @@ TEST_F(RenderSources, EveryFormatGivesTheSameFrame) {
                 }
             }
         }
-        // XYZ stores its own pbc flags (all periodic here); the others take config.toml's
-        const bool wall_x = kind != SourceKind::xyz;
+        // XYZ (pbc) and GSD (log/pedesis/periodic) store their own flags, all periodic
+        // here, and a file's own word comes first; JSON takes config.toml's
+        const bool wall_x = kind == SourceKind::json;
         EXPECT_EQ(f.periodic[0], !wall_x);
         EXPECT_TRUE(f.periodic[1]);
         if (kind == SourceKind::xyz) {
@@ -148,6 +149,19 @@ TEST_F(RenderSources, GsdWithoutDtTakesTheTimeItLogged) {
     ASSERT_TRUE(f.step.has_value());
     EXPECT_EQ(*f.step, 10u);
     EXPECT_EQ(f.species_names, (std::vector<std::string>{"small", "big"}));
+}
+
+// A walled GSD without a config beside it is drawn with its walls (log/pedesis/periodic).
+TEST_F(RenderSources, GsdWithoutConfigDrawsTheWallsItStores) {
+    SoftState<2> s = sample_state(0);
+    s.box = Box<2>(s.box.lengths(), {false, true});
+    {
+        GsdWriter<2> gsd(dir / "trajectory.gsd");
+        gsd.append(s.frame());
+        gsd.commit();
+    }
+    const render::Frame f = open_run_directory(dir, SourceKind::gsd).source->frame(0);
+    EXPECT_EQ(f.periodic, (std::array<bool, 3>{false, true, false}));
 }
 
 TEST_F(RenderSources, UnfinishedRunIsReadFromItsPartFileWithANote) {

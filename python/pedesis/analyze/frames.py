@@ -75,8 +75,9 @@ def _gsd_path(source):
 
 def read_frames(source, frames=None):
     """A Trajectory from a run directory (its trajectory.gsd) or a GSD file; the
-    periodicity, and whether the image counts are tracked, from the config.toml of the
-    run directory (or of the file's folder). ``frames``: a slice or indices (default:
+    periodicity from the file's log/pedesis/periodic (pedesis writes it), else from the
+    config.toml of the run directory (or of the file's folder), which also says whether
+    the image counts are tracked. ``frames``: a slice or indices (default:
     all)."""
     import gsd.hoomd
 
@@ -96,6 +97,9 @@ def read_frames(source, frames=None):
     d = int(first.configuration.dimensions)
     config = _run_config(source if os.path.isdir(source) else os.path.dirname(path) or ".")
     periodic = None if config is None else _periodicity(config, d)
+    flags = (first.log or {}).get("pedesis/periodic")  # the file's own walls come first
+    if flags is not None:
+        periodic = tuple(bool(p) for p in np.ravel(flags)[:d])
     # the event and stepped engines store image counts of 0: they do not track crossings
     tracked = None if config is None else config.get("dynamics", "event") not in ("event",
                                                                                   "stepped")

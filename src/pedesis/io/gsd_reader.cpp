@@ -298,6 +298,20 @@ GsdFrame GsdReader::frame(std::uint64_t k) const {
                 throw InputError(fmt::format("{}: configuration/box has a negative length", where));
         std::copy(b.begin(), b.end(), f.box.begin());
     }
+    if (const Entry* e = find_with_fallback(k, "log/pedesis/periodic")) {
+        const auto dims = static_cast<std::uint64_t>(f.dimensions);
+        shaped(*e, dims, 1, fmt::format("{}x1 (one flag per axis)", dims).c_str());
+        const auto flags = integers(*e, k);
+        std::array<bool, 3> periodic{false, false, false};
+        for (std::size_t a = 0; a < flags.size(); ++a) {
+            if (flags[a] != 0 && flags[a] != 1)
+                throw InputError(fmt::format("{}: log/pedesis/periodic holds {}; each axis is 1 "
+                                             "(periodic) or 0 (walls)",
+                                             where, flags[a]));
+            periodic[a] = flags[a] == 1;
+        }
+        f.periodic = periodic;
+    }
 
     std::uint64_t n = 0;
     if (const Entry* e = find_with_fallback(k, "particles/N")) {

@@ -30,6 +30,9 @@ struct GsdFrame {
     std::vector<std::array<double, 3>> velocity;
     std::vector<std::array<double, 4>> orientation; // unit quaternions (w, x, y, z)
     std::optional<double> time;                     // log/time of this frame, if written
+    // log/pedesis/periodic (pedesis' own chunk: per axis 1 periodic, 0 walls; z is not
+    // periodic in 2D), where the file has it; the hoomd schema itself has no walls.
+    std::optional<std::array<bool, 3>> periodic;
     // Whether the file stores them (in this frame or frame 0), or they are the schema's
     // defaults (zero velocities, identity orientations).
     bool velocity_stored = false;

@@ -63,6 +63,7 @@ enum ChunkId : std::uint16_t {
     velocity_id,
     image_id,
     time_id,
+    periodic_id,
     chunk_count
 };
 
@@ -70,7 +71,7 @@ constexpr std::array<const char*, chunk_count> chunk_names = {
     "configuration/step", "configuration/dimensions", "configuration/box",  "particles/N",
     "particles/types",    "particles/typeid",         "particles/mass",     "particles/diameter",
     "particles/position", "particles/orientation",    "particles/velocity", "particles/image",
-    "log/time",
+    "log/time",           "log/pedesis/periodic",
 };
 
 template <class T> void put(std::string& b, T v) {
@@ -198,10 +199,17 @@ std::vector<Chunk> frame_chunks(const Frame<D>& s, bool write_types,
     Chunk time{time_id, GsdType::float64, 1, 1, {}};
     put<double>(time.bytes, s.time);
 
-    // An empty frame keeps only N and the time: chunks of no bytes would need a location
-    // of their own.
+    // The boundaries, which the schema has no place for either (its box is periodic on
+    // every axis): 1 periodic, 0 walls, one per axis. In every frame, not only frame 0,
+    // so that a reader without the schema's fall-back to frame 0 finds them too.
+    Chunk periodic{periodic_id, GsdType::uint8, static_cast<std::uint64_t>(D), 1, {}};
+    for (int a = 0; a < D; ++a) put<std::uint8_t>(periodic.bytes, s.box.periodic(a) ? 1 : 0);
+
+    // An empty frame keeps only N, the time and the boundaries: chunks of no bytes would
+    // need a location of their own.
     if (n == 0) {
         chunks.push_back(std::move(time));
+        chunks.push_back(std::move(periodic));
         return chunks;
     }
 
@@ -244,6 +252,7 @@ std::vector<Chunk> frame_chunks(const Frame<D>& s, bool write_types,
     chunks.push_back(std::move(velocity));
     chunks.push_back(std::move(image));
     chunks.push_back(std::move(time));
+    chunks.push_back(std::move(periodic));
     return chunks;
 }
 

@@ -5,16 +5,19 @@
 //
 // Each frame holds configuration/step, configuration/dimensions, configuration/box,
 // and particles/N, typeid, mass, diameter, position, orientation, velocity, image,
-// in tag order and as float32 where the schema says float, and the simulation time
-// as log/time (float64). particles/types is written
+// in tag order and as float32 where the schema says float, the simulation time as
+// log/time (float64) and the boundaries as log/pedesis/periodic (uint8, one per axis:
+// 1 periodic, 0 walls; gsd.hoomd gives frame.log["pedesis/periodic"]). particles/types
+// is written
 // in frame 0 and in every frame whose species table differs from frame 0's: a reader
 // takes a chunk missing from a frame from frame 0, not from the previous frame.
 //
 // Conventions:
 // - A 2D box is stored as (Lx, Ly, 0, 0, 0, 0) with dimensions = 2, as HOOMD-blue 3+
 //   writes it; gsd, freud and HOOMD take Lz = 0 to mean a 2D box.
-// - Walls cannot be expressed (the format has no periodicity flags): a walled axis
-//   is written as a box edge like any other.
+// - The schema's box is periodic on every axis; a walled axis is written as a box edge
+//   like any other, and only log/pedesis/periodic says it is a wall (readers that do
+//   not know the chunk, OVITO or HOOMD-blue, take the box as periodic).
 // - The orientation is the unit quaternion of the shortest rotation taking the x axis
 //   onto the director (in 2D a rotation about z by the director's angle); a zero
 //   director gives the identity. A frame without directors (hard particles) has no

@@ -48,6 +48,13 @@ std::array<double, 3> rotated_x_axis(const std::array<double, 4>& q) {
     return {1.0 - s * (y * y + z * z), s * (x * y + w * z), s * (x * z - w * y)};
 }
 
+// A file's three periodic flags cut to the run's axes (a 2D file's z is never periodic).
+template <int D> std::array<bool, D> first_axes(const std::array<bool, 3>& flags) {
+    std::array<bool, D> out{};
+    for (std::size_t a = 0; a < static_cast<std::size_t>(D); ++a) out[a] = flags[a];
+    return out;
+}
+
 template <int D> ParticleFile<D> from_gsd(const fs::path& path, std::optional<std::int64_t> frame) {
     const std::string file = path.string();
     const GsdReader reader(path);
@@ -74,6 +81,7 @@ template <int D> ParticleFile<D> from_gsd(const fs::path& path, std::optional<st
                                          where, a, L[a]));
     }
     out.box = L;
+    if (g.periodic) out.periodic = first_axes<D>(*g.periodic);
     // values the frame stores for its particles, else the caller's defaults
     const bool has_diameter =
         reader.has_chunk(k, "particles/diameter") || reader.has_chunk(0, "particles/diameter");
@@ -146,6 +154,7 @@ template <int D> ParticleFile<D> from_xyz(const fs::path& path, std::optional<st
         centre[a] = x.origin[ua] + 0.5 * L[a];
     }
     out.box = L;
+    if (x.pbc_stated) out.periodic = first_axes<D>(x.pbc);
     std::unordered_map<std::int64_t, std::size_t> row_of_id;
     out.particles.resize(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) {

@@ -10,6 +10,8 @@
 // * positions in a box centred at the origin, as HOOMD-blue's and pedesis' are; an XYZ
 //   cell is moved from its Origin (its corner; 0 when not given) to the centre;
 // * radius = diameter / 2 (GSD);
+// * the boundaries, where the file states them: GSD's log/pedesis/periodic (pedesis'
+//   own chunk; HOOMD-blue's files have none), XYZ's pbc key;
 // * the director is the x axis turned by the GSD orientation quaternion (w, x, y, z), the
 //   inverse of what pedesis' GsdWriter stores; in 2D it must stay in the plane;
 // * ids: the XYZ id column where present, else the row (a pedesis GSD is in id order);

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -43,7 +44,10 @@ template <int D> struct FileParticle {
 // What a start file holds: the tutorial's JSON (read_tutorial_json), or a frame of a GSD
 // or extended XYZ file made into the same shape (io/particle_file.hpp).
 template <int D> struct ParticleFile {
-    std::optional<Vec<D>> box;              // box lengths, if the file has a "box"
+    std::optional<Vec<D>> box; // box lengths, if the file has a "box"
+    // Per axis periodic (true) or walled, where the file says: GSD's log/pedesis/periodic,
+    // XYZ's pbc; the tutorial's JSON does not.
+    std::optional<std::array<bool, D>> periodic;
     std::vector<FileParticle<D>> particles; // in file order, ids as given
     // The names of the types, by type index, where the file names them (GSD's
     // particles/types, XYZ's species column); empty for the tutorial's JSON, whose types

@@ -302,7 +302,10 @@ XyzFrame XyzReader::frame(std::size_t k) const {
         const auto o = parse_numbers(it->second, 3, "Origin", where);
         std::copy(o.begin(), o.end(), f.origin.begin());
     }
-    if (const auto it = pairs.find("pbc"); it != pairs.end()) f.pbc = parse_pbc(it->second, where);
+    if (const auto it = pairs.find("pbc"); it != pairs.end()) {
+        f.pbc = parse_pbc(it->second, where);
+        f.pbc_stated = true;
+    }
     if (const auto it = pairs.find("time"); it != pairs.end()) {
         const auto t = parse_double(it->second);
         if (!t || !std::isfinite(*t))

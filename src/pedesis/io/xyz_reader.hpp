@@ -16,6 +16,7 @@ struct XyzFrame {
     std::array<double, 3> lattice{}; // cell edge lengths (the cell must be orthorhombic)
     std::array<double, 3> origin{};  // the cell's corner (0 when the file has no Origin)
     std::array<bool, 3> pbc{true, true, true};
+    bool pbc_stated = false; // whether the comment line has pbc (else the default above)
     std::optional<double> time;
     std::vector<std::string> species_names; // distinct names, in order of first appearance
     std::vector<std::uint16_t> species;     // per row, an index into species_names

@@ -13,8 +13,9 @@
 
 namespace pedesis::render {
 
-// What the run's config.toml adds to frame files that lack it: GSD frames store a step
-// number but no time, and neither GSD nor JSON stores walls or species names.
+// What the run's config.toml adds to frame files that lack it: GSD frames of other
+// programs store a step number but no time and no walls, and JSON stores neither walls
+// nor species names.
 struct RunFacts {
     std::optional<double> dt;
     std::optional<std::array<bool, 3>> periodic;
@@ -31,8 +32,9 @@ class FrameSource {
     virtual std::string description() const = 0;
 };
 
-// GSD (hoomd schema). Time is step * dt when `facts` has dt; boxes are periodic unless
-// `facts` says otherwise, since GSD cannot store walls.
+// GSD (hoomd schema). Time is step * dt when `facts` has dt; the walls are those of
+// log/pedesis/periodic where the file has it (pedesis' own files), else of `facts`, else
+// none (the schema's box is periodic).
 std::unique_ptr<FrameSource> open_gsd_source(const std::filesystem::path& file,
                                              const RunFacts& facts);
 

@@ -46,7 +46,11 @@ class GsdSource final : public FrameSource {
                 throw InputError(fmt::format("{}: box length {} along axis {} must be positive",
                                              where, g.box[i], a));
         }
-        f.periodic = facts_.periodic.value_or(std::array<bool, 3>{true, true, f.dimension == 3});
+        // the file's own boundaries first (pedesis writes them), then the run's config
+        f.periodic =
+            g.periodic
+                ? *g.periodic
+                : facts_.periodic.value_or(std::array<bool, 3>{true, true, f.dimension == 3});
         f.step = g.step;
         if (g.time)
             f.time = *g.time;

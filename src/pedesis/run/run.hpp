@@ -27,14 +27,15 @@ struct FrameArrays {
     double time = 0.0;
     std::uint64_t step = 0;
     std::array<double, 3> box{};
-    std::vector<std::string> species; // names, by species index
-    std::vector<std::uint32_t> type;  // species index per particle
-    std::vector<double> position;     // 3 per particle
-    std::vector<double> velocity;     // 3 per particle
-    std::vector<double> radius;       // per particle
-    std::vector<double> mass;         // per particle (inf: fixed obstacle)
-    std::vector<double> director;     // 3 per particle; empty without directors
-    std::vector<std::int32_t> image;  // 3 per particle; zero where not counted
+    std::array<bool, 3> periodic{true, true, true}; // per axis; false: walls
+    std::vector<std::string> species;               // names, by species index
+    std::vector<std::uint32_t> type;                // species index per particle
+    std::vector<double> position;                   // 3 per particle
+    std::vector<double> velocity;                   // 3 per particle
+    std::vector<double> radius;                     // per particle
+    std::vector<double> mass;                       // per particle (inf: fixed obstacle)
+    std::vector<double> director;                   // 3 per particle; empty without directors
+    std::vector<std::int32_t> image;                // 3 per particle; zero where not counted
 };
 
 class Run {

@@ -77,7 +77,10 @@ RunConfig complete_from_initial_file(const RunConfig& config, const ParticleFile
                              " has no [box] either");
         c.box_lengths.clear();
         for (int a = 0; a < D; ++a) c.box_lengths.push_back((*f.box)[a]);
+        // the file's walls where it states them (a pedesis trajectory does)
         c.periodic.assign(D, true);
+        if (f.periodic)
+            for (int a = 0; a < D; ++a) c.periodic[static_cast<std::size_t>(a)] = (*f.periodic)[a];
     }
     if (c.species.empty()) {
         // the file's type names (GSD, XYZ), else A, B, ... for the JSON's type numbers

@@ -156,6 +156,32 @@ bool self_propelled(const RunConfig& c) {
     return false;
 }
 
+// ["wall", "periodic"], as [box] boundary is written.
+std::string boundary_words(const std::vector<bool>& periodic) {
+    std::string words;
+    for (bool p : periodic)
+        words += std::string(words.empty() ? "" : ", ") + (p ? "\"periodic\"" : "\"wall\"");
+    return "[" + words + "]";
+}
+
+// A file that states its boundaries must have those of the run: a walled run's particles
+// put in a periodic box would pass where its walls were, and a periodic run's would
+// straddle the new walls.
+template <int D>
+void check_file_boundary(const ParticleFile<D>& f, const Box<D>& box, const RunConfig& c) {
+    if (!f.periodic) return;
+    std::vector<bool> file(D), run(D);
+    for (int a = 0; a < D; ++a) {
+        file[static_cast<std::size_t>(a)] = (*f.periodic)[static_cast<std::size_t>(a)];
+        run[static_cast<std::size_t>(a)] = box.periodic(a);
+    }
+    if (file != run)
+        throw InputError(fmt::format("{}: the file's box has boundary = {}, but [box] boundary "
+                                     "of {} is {}; set boundary = {} in [box] to start from it",
+                                     *c.initial_file, boundary_words(file), c.file,
+                                     boundary_words(run), boundary_words(file)));
+}
+
 } // namespace
 
 template <int D> ParticleFile<D> read_initial_file(const RunConfig& c) {
@@ -225,6 +251,7 @@ ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box,
                 if (std::abs((*f.box)[a] - box.length(a)) > box_tolerance * box.length(a))
                     throw InputError(*c.initial_file + ": box does not match [box] of " + c.file);
         }
+        check_file_boundary<D>(f, box, c);
         // tags follow the file's ids in increasing order
         std::vector<std::size_t> order(f.particles.size());
         std::iota(order.begin(), order.end(), std::size_t{0});
