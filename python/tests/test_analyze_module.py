@@ -386,6 +386,9 @@ def test_analyze_figures_of_a_lattice_run(tmp_path, run_cli):
     last = [line for line in out.splitlines() if line.strip().startswith("0.02")][0].split()
     assert float(last[3]) == 1.0
     assert "one peak: homogeneous" in out
+    # a row's gas and dense columns say so too (they printed "nan nan")
+    assert last[1:3] == ["one", "phase"] and "nan" not in out
+    assert "clusters: contact distance 1.08 (--contact 1.2 diameters of 0.9)" in out
     assert (tmp_path / "c.png").stat().st_size > 10000
 
 

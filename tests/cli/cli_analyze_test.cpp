@@ -259,6 +259,12 @@ TEST_F(CliAnalyze, MsdOfAnEventRunHasNoMsdColumn) {
     simulate("ev", event_config(2));
     const CliResult r = run_pedesis("analyze msd ev", dir);
     expect_one_error_line(r, "ev/log.csv: no column 'msd'");
+    // why an event run has none, and the way to its MSD from frames
+    EXPECT_NE(r.output.find("this run's dynamics is 'event'; its frames carry no image counts"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("pa.msd(pa.unwrap(traj.positions, traj.box))"), std::string::npos)
+        << r.output;
     EXPECT_FALSE(fs::exists(dir / "ev" / "msd.png"));
 }
 

@@ -78,17 +78,26 @@ def _voronoi_bonds(x, box):
     return np.concatenate(out_i), np.concatenate(out_dr), np.concatenate(out_w)
 
 
-def clusters(positions, box, cutoff, min_neighbours=0):
+def clusters(positions, box, cutoff, min_neighbours=0, types=None):
     """Clusters: particles closer than ``cutoff`` belong to one cluster (the connected
     components of the contact graph). With ``min_neighbours`` only the particles with at
     least that many within ``cutoff`` take part (the dense phase of motility-induced
     phase separation: 5 of a close-packed disk's 6); the others get label -1.
+    ``cutoff`` may be an (S, S) array, one distance per pair of species, with ``types``
+    (N,) the species index of each particle.
     Returns (labels, sizes): each particle's cluster index, and the size of each cluster,
     largest first (labels are renumbered to match)."""
     box = box if isinstance(box, Box) else Box(box)
     x = box.wrap(np.asarray(positions, dtype=float))
     tree = cKDTree(x, boxsize=box.tree_size())
-    pairs = tree.query_pairs(cutoff, output_type="ndarray")
+    per_pair = np.ndim(cutoff) == 2
+    if per_pair and types is None:
+        raise ValueError("clusters: a cutoff per pair of species needs types")
+    pairs = tree.query_pairs(np.max(cutoff) if per_pair else cutoff, output_type="ndarray")
+    if per_pair and len(pairs):
+        t = np.asarray(types)
+        r = np.linalg.norm(box.minimum_image(x[pairs[:, 0]] - x[pairs[:, 1]]), axis=1)
+        pairs = pairs[r <= np.asarray(cutoff)[t[pairs[:, 0]], t[pairs[:, 1]]]]
     n = len(x)
     member = np.ones(n, dtype=bool)
     if min_neighbours > 0:

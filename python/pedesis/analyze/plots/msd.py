@@ -107,9 +107,12 @@ def main():
     out = a.out
     log_path = run.path / "log.csv"
     log = run.log()
+    hard = ("; its frames carry no image counts: from frames written often enough, "
+            "pa.msd(pa.unwrap(traj.positions, traj.box)) in Python, docs/analyze.md"
+            if not run.soft else "")
     require_columns(log, log_path, ["msd"],
                     f"the MSD is logged by soft/active runs only (dynamics brownian, langevin "
-                    f"or nve; this run's dynamics is '{run.dynamics}')")
+                    f"or nve; this run's dynamics is '{run.dynamics}'{hard})")
     keep = (log["time"] > 0) & (log["msd"] > 0)
     if not keep.any():
         raise InputError(f"{log_path}: no row with t > 0 and msd > 0 to draw on log axes")
