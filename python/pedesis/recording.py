@@ -159,7 +159,7 @@ def _system_frame(system):
     types = np.array(system.types, copy=True)
     radius = np.array([sp["radius"] for sp in table], dtype=float)
     mass = np.array([sp["mass"] for sp in table], dtype=float)
-    return {"time": system.time, "step": system.step, "box": list(system.box),
+    return {"time": system.time, "step": system.step, "box": system.box,
             "species": [sp["name"] for sp in table], "type": types,
             "position": np.array(system.positions, copy=True),
             "velocity": np.array(system.velocities, copy=True),

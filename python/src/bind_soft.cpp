@@ -1,6 +1,7 @@
 // pedesis.System, pedesis.Evolver, pedesis.Plugin (the base of HarmonicForce and the
 // other terms, which pedesis/__init__.py builds from the catalogue) and random_init.
 #include "bindings.hpp"
+#include "box_object.hpp"
 #include "errors.hpp"
 #include "soft_model.hpp"
 
@@ -217,8 +218,9 @@ InputError naming the particle and key.
             "N", [](PySystem& s) { return s.get().size(); }, "Number of particles.")
         .def("__len__", [](PySystem& s) { return s.model ? s.model->size() : 0; })
         .def_property_readonly(
-            "box", [](PySystem& s) { return s.get().box(); },
-            "Box lengths [Lx, Ly(, Lz)]; the box is centred at the origin.")
+            "box", [](PySystem& s) { return box_object(s.get().box(), s.get().periodic()); },
+            "The box, a pedesis.Box: lengths [Lx, Ly(, Lz)] (it reads as that list) and "
+            "periodic flags; the box is centred at the origin.")
         .def_property_readonly(
             "time", [](PySystem& s) { return s.get().time(); }, "Simulated time.")
         .def_property_readonly(

@@ -51,6 +51,11 @@ template <int D> class System final : public SystemModel {
         for (int a = 0; a < D; ++a) L.push_back(state.box.length(a));
         return L;
     }
+    std::vector<bool> periodic() const override {
+        std::vector<bool> p;
+        for (int a = 0; a < D; ++a) p.push_back(state.box.periodic(a));
+        return p;
+    }
     const std::vector<Species>& species() const override { return state.p.species_table; }
     double time() const override { return state.time; }
     std::uint64_t step() const override { return state.step; }
@@ -96,7 +101,15 @@ std::unique_ptr<SystemModel> read_system_d(const std::filesystem::path& path, st
     c.initial_frame = frame;
     c.species_defaults.positions = "file";
     c.species_defaults.velocities = "zero";
-    return std::make_unique<System<D>>(build_soft_state<D>(c));
+    auto system = std::make_unique<System<D>>(build_soft_state<D>(c));
+    // as `pedesis run` refuses walls for the soft engines (run/soft_run.cpp)
+    for (int a = 0; a < D; ++a)
+        if (!system->state.box.periodic(a))
+            throw InputError(fmt::format("System.read_init: {} has a wall on axis {} (its box's "
+                                         "boundaries); the soft/active engine runs in periodic "
+                                         "boxes only",
+                                         path.string(), a));
+    return system;
 }
 
 // The tutorial's System and Evolver as an engine of the one run loop (run/simulation.hpp),

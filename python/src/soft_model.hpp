@@ -32,6 +32,7 @@ class SystemModel {
     virtual std::uint32_t* tags() = 0;
     virtual std::uint16_t* types() = 0;
     virtual std::vector<double> box() const = 0;
+    virtual std::vector<bool> periodic() const = 0; // per axis; false: a wall
     virtual const std::vector<Species>& species() const = 0;
     virtual double time() const = 0;
     virtual std::uint64_t step() const = 0;

@@ -132,3 +132,17 @@ def test_gas_given_a_path_points_at_from_file(tmp_path, given):
     with pytest.raises(pedesis.InputError, match="Gas.from_file"):
         pedesis.Gas(config)  # a pathlib.Path
     assert pedesis.Gas.from_file(str(config)).box.periodic == (False, True)
+
+
+def test_system_box_is_a_box_and_refuses_a_walled_start(walled_run, tmp_path):
+    # the soft engine's System: its box is a pedesis.Box too, and a walled file is
+    # refused as `pedesis run` refuses walls for the soft engines (it used to be read
+    # as a periodic box, the walls lost)
+    with pytest.raises(pedesis.InputError, match="wall on axis 0.*periodic boxes only"):
+        pedesis.System(rcut=1.5).read_init(str(walled_run / "trajectory.gsd"))
+    init = tmp_path / "init.json"
+    pedesis.builder.random_init(0.2, 12, rcut=1.0, outfile=init, seed=3)
+    s = pedesis.System(rcut=1.5)
+    s.read_init(str(init))
+    assert isinstance(s.box, pedesis.Box)
+    assert s.box == [12.0, 12.0] and s.box.periodic == (True, True)
