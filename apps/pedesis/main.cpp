@@ -7,6 +7,7 @@
 #include "init_command.hpp"
 #include "mpi_world.hpp"
 #include "run_command.hpp"
+#include "subcommand_error.hpp"
 #include "sweep_command.hpp"
 #include "validate_command.hpp"
 
@@ -63,6 +64,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() != 0)
+            if (const auto message = pedesis::cli::subcommand_error(app, "pedesis")) {
+                fmt::print(stderr, "pedesis: error: {}\n", *message);
+                return pedesis::exit_input_error;
+            }
         const int code = app.exit(e);
         return code == 0 ? 0 : pedesis::exit_input_error;
     } catch (const pedesis::InputError& e) {
