@@ -7,6 +7,7 @@
 #include "python_module.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/run/analysis_outputs.hpp"
 
 #include <fmt/core.h>
 
@@ -15,6 +16,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace pedesis::cli {
@@ -40,29 +42,39 @@ struct Kind {
 constexpr std::array<Kind, 7> kinds{{
     {"speed",
      "Speed distribution of the final frame per species over Rayleigh (2D) / Maxwell (3D) at "
-     "the measured temperature; prints the Kolmogorov-Smirnov distance (speed_distribution.png)",
+     "the measured temperature; prints the Kolmogorov-Smirnov distance",
      false, Frames::any, false},
     {"thermo",
      "Energies, temperatures and pressures of log.csv against time (and collisions per "
-     "particle) (thermo.png)",
+     "particle)",
      true, Frames::none, false},
-    {"msd", "Mean squared displacement of a soft run against the free-ABP curve (msd.png)", true,
+    {"msd", "Mean squared displacement of a soft run against the free-ABP curve", true,
      Frames::none, false},
-    {"order", "Polar order parameter of a soft run against time (order.png)", true, Frames::none,
-     false},
-    {"structure",
-     "g(r) over the last frames and S(q), direct and from g(r), of trajectory.gsd "
-     "(structure.png)",
+    {"order", "Polar order parameter of a soft run against time", true, Frames::none, false},
+    {"structure", "g(r) over the last frames and S(q), direct and from g(r), of trajectory.gsd",
      false, Frames::gsd, false},
     {"bond_order",
-     "Voronoi-weighted hexatic order psi6 (2D) or Steinhardt q4, q6 (3D) against time "
-     "(bond_order.png)",
-     false, Frames::gsd, false},
+     "Voronoi-weighted hexatic order psi6 (2D) or Steinhardt q4, q6 (3D) against time", false,
+     Frames::gsd, false},
     {"clusters",
      "Local area fraction histogram (phase separation: two peaks), largest dense cluster "
-     "against time and cluster sizes; --cell, --contact, --min-neighbours (clusters.png)",
+     "against time and cluster sizes; --cell, --contact, --min-neighbours",
      false, Frames::gsd, true},
 }};
+
+// Each kind's plot has its name in the one list a new run removes from its directory.
+constexpr bool same_kinds_as_outputs() {
+    if (kinds.size() != analysis_outputs.size()) return false;
+    for (std::size_t k = 0; k < kinds.size(); ++k)
+        if (std::string_view(kinds[k].name) != analysis_outputs[k].kind) return false;
+    return true;
+}
+static_assert(same_kinds_as_outputs(),
+              "a kind of pedesis analyze without its file in run/analysis_outputs.hpp");
+
+const char* output_file(const Kind& kind) {
+    return analysis_outputs[static_cast<std::size_t>(&kind - kinds.data())].file;
+}
 
 struct AnalyzeArgs {
     std::string run_dir;
@@ -117,11 +129,9 @@ void check_run_dir(const fs::path& dir, const Kind& kind) {
 
 void analyze(const Kind& kind, const AnalyzeArgs& a) {
     check_run_dir(a.run_dir, kind);
-    std::vector<std::string> args{kind.name, a.run_dir};
-    if (!a.out.empty()) {
-        args.push_back("--out");
-        args.push_back(a.out);
-    }
+    const std::string out =
+        a.out.empty() ? (fs::path(a.run_dir) / output_file(kind)).string() : a.out;
+    std::vector<std::string> args{kind.name, a.run_dir, "--out", out};
     args.insert(args.end(), a.options.begin(), a.options.end());
     const int code = run_python_module("analyze", "analyze", args);
     if (code == 0) return;
@@ -139,7 +149,8 @@ void add_analyze_command(CLI::App& app) {
     cmd->require_subcommand(1);
     for (const Kind& kind : kinds) {
         auto a = std::make_shared<AnalyzeArgs>();
-        auto* sub = cmd->add_subcommand(kind.name, kind.help);
+        auto* sub =
+            cmd->add_subcommand(kind.name, fmt::format("{} ({})", kind.help, output_file(kind)));
         sub->add_option("run_dir", a->run_dir, "Run directory (written by pedesis run)")
             ->required();
         sub->add_option("--out", a->out,

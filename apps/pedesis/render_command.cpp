@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/render/render_movie.hpp"
+#include "pedesis/run/analysis_outputs.hpp"
 
 #include <fmt/core.h>
 
@@ -68,7 +69,7 @@ void run_render(const RenderArgs& a) {
 
     render::RenderRequest r;
     r.run_dir = a.run_dir;
-    r.out = a.out.empty() ? (r.run_dir / "movie.mp4").string() : a.out;
+    r.out = a.out.empty() ? (r.run_dir / default_movie).string() : a.out;
     r.source = sources.at(a.source);
     r.colour = colours.at(a.colour);
     if (!a.size.empty()) r.size = parse_size(a.size);

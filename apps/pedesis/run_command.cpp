@@ -7,10 +7,12 @@
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/run/run.hpp"
 #include "pedesis/run/steering.hpp"
+#include "pedesis/setup/config_overrides.hpp"
 #include "pedesis/setup/run_config.hpp"
 #if PEDESIS_HAVE_GRAPHICS
 #include "pedesis/view/view_server.hpp"
 #endif
+#include "set_option.hpp"
 #include "thread_choice.hpp"
 
 #include <fmt/format.h>
@@ -36,7 +38,8 @@ struct RunArgs {
     std::string device; // empty: the config's [run] device
     bool view = false;
     int view_port = 8765;
-    std::string steering; // a record to replay
+    std::string steering;          // a record to replay
+    std::vector<std::string> sets; // --set KEY=VALUE
 };
 
 // 128 random bits, in hex: the token a page must show to change a run.
@@ -127,6 +130,7 @@ void add_run_command(CLI::App& app) {
         ->check(CLI::Range(0, 65535));
     cmd->add_option("--steering", a->steering,
                     "Replay a steering.csv: apply its changes at their steps (docs/view.md)");
+    add_set_option(*cmd, a->sets, "the config");
     cmd->callback([a] {
         if (a->list_quantities) {
             print_quantities(std::cout);
@@ -135,7 +139,9 @@ void add_run_command(CLI::App& app) {
         if (a->config.empty()) throw CLI::RequiredError("config");
         // (first: under mpirun, only process 0 may tell what is wrong with the config)
         const std::unique_ptr<Communicator> comm = world_communicator();
-        const RunConfig config = load_run_config(a->config);
+        std::optional<ConfigWithSets> with_sets;
+        if (!a->sets.empty()) with_sets.emplace(a->config, a->sets);
+        const RunConfig config = with_sets ? with_sets->read() : load_run_config(a->config);
         // Under mpirun the soft engine divides the box among the processes; the hard
         // engines run on one (P copies would write one directory P times over).
         if (comm && !config.soft())
@@ -146,6 +152,7 @@ void add_run_command(CLI::App& app) {
         RunOptions o;
         o.comm = comm.get();
         o.config_path = a->config;
+        if (with_sets) o.config_text = with_sets->text_as_run();
         o.out_dir = a->out.empty()
                         ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
                         : std::filesystem::path(a->out);
@@ -163,7 +170,15 @@ void add_run_command(CLI::App& app) {
         choose_threads(threads, console);
         // a signal during set-up ends the process at once (nothing there to close)
         InterruptGuard guard(OutsideCleanStops::end_process);
-        const std::unique_ptr<Run> run = make_run(config, o, console);
+        const std::unique_ptr<Run> run = [&] {
+            try {
+                return make_run(config, o, console);
+            } catch (const InputError& e) {
+                // a key's place named in the set-up (the time step's): the file's, or the --set's
+                if (with_sets) throw InputError(with_sets->explain(e.what()));
+                throw;
+            }
+        }();
         // Changes from the page (--view) and from a record (--steering) go through one
         // desk, applied between steps and recorded in the run directory. Under MPI the
         // page only watches: a change reaching process 0 alone would split the run.

@@ -1,6 +1,7 @@
 #include "sweep_command.hpp"
 
 #include "mpi_world.hpp"
+#include "set_option.hpp"
 #include "thread_choice.hpp"
 
 #include "pedesis/core/error.hpp"
@@ -25,6 +26,7 @@ struct SweepArgs {
     std::string shard; // "I/N"
     int threads = 0;
     bool list = false;
+    std::vector<std::string> sets; // --set KEY=VALUE
 };
 
 struct Shard {
@@ -60,7 +62,7 @@ void run_sweep(const SweepArgs& a) {
     MpiWorld& world = MpiWorld::get();
     const Shard shard = parse_shard(a.shard);
     const Sweep sweep = load_sweep(
-        a.file, a.out.empty() ? std::nullopt : std::optional<std::filesystem::path>(a.out));
+        a.file, a.out.empty() ? std::nullopt : std::optional<std::filesystem::path>(a.out), a.sets);
     const bool talk = world.rank() == 0;
     if (a.list) {
         if (talk)
@@ -156,6 +158,7 @@ void add_sweep_command(CLI::App& app) {
                     "1 per process under mpirun)")
         ->check(CLI::Range(1, 1024));
     cmd->add_flag("--list", a->list, "Print the points and which are done, and exit");
+    add_set_option(*cmd, a->sets, "the base config of every point");
     cmd->callback([a] { run_sweep(*a); });
 }
 

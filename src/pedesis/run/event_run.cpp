@@ -67,6 +67,13 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
                 std::ceil(*c_.stop_collisions_per_particle * static_cast<double>(n)));
         if (c_.stop_energy_fraction)
             limits_.min_kinetic_energy = *c_.stop_energy_fraction * record_.initial_kinetic;
+        // (the stepped engine's refusal: a run with nothing left to do would end at once and
+        // pass for one that ran)
+        if (const char* why = o_.restart ? stop_met() : nullptr)
+            throw InputError(fmt::format(
+                "{}: the checkpoint {} is at t = {:g} ({} collisions), which already meets the "
+                "stop condition ({}); raise it in [run] to continue",
+                c_.file, o_.restart->string(), engine_->time(), step(), why));
     }
 
     // The collisions so far stand in for steps, which this engine does not have.
@@ -173,6 +180,19 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     }
 
   private:
+    // The stop condition a restored state meets already (the clock within the rounding of
+    // Simulation's time limit), or null.
+    const char* stop_met() const {
+        const auto& e = *engine_;
+        if (e.time() >= t_end_ - 1e-9 * std::max(1.0, std::abs(t_end_)))
+            return reason_name(StopReason::time);
+        if (e.counters().pair_collisions >= limits_.pair_collisions)
+            return reason_name(StopReason::collisions);
+        if (e.kinetic_energy() <= limits_.min_kinetic_energy)
+            return reason_name(StopReason::energy);
+        return nullptr;
+    }
+
     static const char* reason_name(StopReason reason) {
         return reason == StopReason::time         ? "time"
                : reason == StopReason::collisions ? "collisions_per_particle"

@@ -5,26 +5,42 @@
 // beside the results.
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
+#include "pedesis/run/analysis_outputs.hpp"
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace pedesis {
 
+// `stale_results`: the engine's own; the plots and the movie made of an earlier run there
+// (analysis_outputs.hpp) go too. `config_text`: the config as run, where it is not the
+// file's text (--set).
 inline void prepare_run_directory(const std::filesystem::path& out_dir,
                                   const std::filesystem::path& config_path,
+                                  const std::optional<std::string>& config_text,
                                   const std::vector<const char*>& stale_results) {
     std::error_code ec;
     std::filesystem::create_directories(out_dir, ec);
     if (ec)
         throw InputError(out_dir.string() + ": cannot create output directory: " + ec.message());
     for (const char* stale : stale_results) std::filesystem::remove(out_dir / stale, ec);
-    std::ifstream cfg(config_path);
-    std::stringstream text;
-    text << cfg.rdbuf();
-    write_file_atomically(out_dir / "config.toml", [&](std::ostream& out) { out << text.str(); });
+    for (const AnalysisOutput& plot : analysis_outputs)
+        std::filesystem::remove(out_dir / plot.file, ec);
+    std::filesystem::remove(out_dir / default_movie, ec);
+    std::string text;
+    if (config_text) {
+        text = *config_text;
+    } else {
+        std::ifstream cfg(config_path);
+        std::stringstream file;
+        file << cfg.rdbuf();
+        text = file.str();
+    }
+    write_file_atomically(out_dir / "config.toml", [&](std::ostream& out) { out << text; });
 }
 
 } // namespace pedesis

@@ -53,7 +53,7 @@ template <int D> void Simulation<D>::open() {
         on_process_zero(options_.comm, [&] {
             const auto& dir = options_.out_dir;
             const std::vector<const char*> stale = engine_.stale_results();
-            prepare_run_directory(dir, options_.config_path, stale);
+            prepare_run_directory(dir, options_.config_path, options_.config_text, stale);
             log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
             std::string header;
             for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged_[c];

@@ -4,6 +4,7 @@
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/config_table.hpp"
 #include "pedesis/run/run.hpp"
+#include "pedesis/setup/config_overrides.hpp"
 #include "pedesis/setup/run_config.hpp"
 
 #include <fmt/format.h>
@@ -25,74 +26,14 @@ std::string where(const toml::node& n, const std::string& file) {
     return fmt::format("{}:{}:{}", file, s.begin.line, s.begin.column);
 }
 
-std::string names_of(const toml::array& tables) {
-    std::string s;
-    for (const toml::node& t : tables) {
-        const toml::table* tt = t.as_table();
-        const toml::node* name = tt ? tt->get("name") : nullptr;
-        s += (s.empty() ? "" : ", ") +
-             (name && name->is_string() ? name->value_or(std::string()) : std::string("?"));
-    }
-    return s;
-}
-
-// The table that holds the last part of `key` in `config`, and that part: tables by name,
-// an array of tables by its entry's `name` or by index. Throws InputError naming the
-// sweep file's line.
-std::pair<toml::table*, std::string> parent_of(toml::table& config, const std::string& key,
-                                               const std::string& at, const std::string& base) {
-    // every part, empty ones too ("", "a.", "a..b" are refused)
-    std::vector<std::string> parts;
-    for (std::size_t from = 0;;) {
-        const std::size_t dot = key.find('.', from);
-        parts.push_back(
-            key.substr(from, dot == std::string::npos ? std::string::npos : dot - from));
-        if (dot == std::string::npos) break;
-        from = dot + 1;
-    }
-    for (const std::string& p : parts)
-        if (p.empty()) throw InputError(at + ": [vary] key '" + key + "' has an empty part");
-    toml::table* t = &config;
-    for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
-        toml::node* child = t->get(parts[k]);
-        if (!child)
-            throw InputError(fmt::format("{}: [vary] key '{}': the base config {} has no [{}]", at,
-                                         key, base, parts[k]));
-        if (toml::table* sub = child->as_table()) {
-            t = sub;
-            continue;
-        }
-        toml::array* list = child->as_array();
-        if (!list || !list->is_array_of_tables() || k + 1 >= parts.size())
-            throw InputError(fmt::format("{}: [vary] key '{}': '{}' of {} is a value, not a table",
-                                         at, key, parts[k], base));
-        const std::string& pick = parts[++k];
-        toml::table* found = nullptr;
-        for (toml::node& entry : *list) {
-            toml::table& e = *entry.as_table();
-            if (e.get("name") && e.get("name")->value_or(std::string()) == pick) found = &e;
-        }
-        if (!found && pick.find_first_not_of("0123456789") == std::string::npos &&
-            std::stoul(pick) < list->size())
-            found = (*list)[std::stoul(pick)].as_table();
-        if (!found)
-            throw InputError(fmt::format("{}: [vary] key '{}': the base config {} has no "
-                                         "[[{}]] named '{}' (it has: {}; or give an index)",
-                                         at, key, base, parts[k - 1], pick, names_of(*list)));
-        if (k + 1 >= parts.size())
-            throw InputError(fmt::format("{}: [vary] key '{}' names a [[{}]] entry, not one of "
-                                         "its keys",
-                                         at, key, parts[k - 1]));
-        t = found;
-    }
-    return {t, parts.back()};
-}
-
 // Sets `value` at the key: a number where the base has a float may be given as an
 // integer; any other change of type is refused.
 void set_value(toml::table& config, const std::string& key, const toml::node& value,
                const std::string& at, const std::string& base) {
-    auto [table, last] = parent_of(config, key, at, base);
+    const ConfigSlot slot = config_slot(config, key, at + ": [vary] key '" + key + "'",
+                                        "the base config " + base, false);
+    toml::table* table = slot.table;
+    const std::string& last = slot.key;
     const toml::node* old = table->get(last);
     if (old && old->is_floating_point() && value.is_integer()) {
         table->insert_or_assign(last, static_cast<double>(*value.value<std::int64_t>()));
@@ -132,7 +73,8 @@ void anchor_initial_file(toml::table& config, const fs::path& base) {
 
 } // namespace
 
-Sweep load_sweep(const std::string& path, const std::optional<fs::path>& out) {
+Sweep load_sweep(const std::string& path, const std::optional<fs::path>& out,
+                 const std::vector<std::string>& sets) {
     const toml::table doc = parse_toml_file(path);
     ConfigTable root(doc, path);
     Sweep s;
@@ -155,7 +97,16 @@ Sweep load_sweep(const std::string& path, const std::optional<fs::path>& out) {
     std::error_code ec;
     if (!fs::is_regular_file(s.base, ec))
         throw InputError(root.where("base") + ": no such config file: " + s.base.string());
-    const toml::table base_config = parse_toml_file(s.base.string());
+    std::optional<ConfigWithSets> with_sets;
+    if (!sets.empty()) with_sets.emplace(s.base.string(), sets);
+    const toml::table base_config = [&] {
+        if (!with_sets) return parse_toml_file(s.base.string());
+        try {
+            return parse_toml_text(with_sets->text(), s.base.string());
+        } catch (const InputError& e) {
+            throw InputError(with_sets->explain(e.what()));
+        }
+    }();
 
     // toml++ keeps a table's keys sorted; the sweep keeps the file's order
     std::vector<std::pair<std::string, const toml::node*>> entries;
@@ -204,7 +155,9 @@ Sweep load_sweep(const std::string& path, const std::optional<fs::path>& out) {
             pick[k] = rest % values[k].size();
             rest /= values[k].size();
         }
-        std::string header = fmt::format("# {} of the sweep {}: {}", p.name, path, s.base.string());
+        std::string header =
+            fmt::format("# {} of the sweep {}: {}{}", p.name, path, s.base.string(),
+                        with_sets ? " with " + with_sets->sets_text() : std::string());
         for (std::size_t k = 0; k < values.size(); ++k) {
             const toml::node& v = *values[k][pick[k]];
             set_value(config, s.keys[k], v, where(v, path), s.base.string());

@@ -43,8 +43,10 @@ struct Sweep {
 
 // Reads the sweep file and builds every point's config, each checked as `pedesis run`
 // checks a config: any fault is an InputError naming the sweep file and key, or the point
-// and the config's key, before any file is written. `out` overrides the file's `out`.
-Sweep load_sweep(const std::string& path, const std::optional<std::filesystem::path>& out);
+// and the config's key, before any file is written. `out` overrides the file's `out`;
+// `sets` (--set KEY=VALUE, setup/config_overrides.hpp) change the base config of every point.
+Sweep load_sweep(const std::string& path, const std::optional<std::filesystem::path>& out,
+                 const std::vector<std::string>& sets = {});
 
 // Whether the point's run directory holds the summary of a finished run (not of an
 // interrupted one).
