@@ -117,9 +117,11 @@ TEST_F(SoftBadInput, PerSpeciesValuesMustNameTheSpecies) {
 
 TEST_F(SoftBadInput, BoxTooSmallForTheCutoff) {
     // r_list = 2 + 0.5: a periodic side must be at least 5 for the minimum image
-    expect_rejected(with("length = 20", "length = 4.5"),
-                    {"run.toml: neighbour list: box too small for the cutoff", "2 r_list = 5",
-                     "make the box ([box] length) larger, or the cutoff ([neighbor_list] r_cut"});
+    expect_rejected(
+        with("length = 20", "length = 4.5"),
+        {"run.toml:5:10: key 'box.length': neighbour list: box too small for the cutoff",
+         "2 r_list = 5",
+         "make the box ([box] length) larger, or the cutoff ([neighbor_list] r_cut"});
 }
 
 TEST_F(SoftBadInput, InconsistentIntegrators) {

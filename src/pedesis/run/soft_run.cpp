@@ -598,7 +598,8 @@ EngineSetup<D> soft_engine_setup(const RunConfig& config, const RunOptions& opti
         throw InputError(fmt::format(
             "{}: {}; make the box{} larger, or the cutoff ([neighbor_list] r_cut, the forces' "
             "ranges) or [neighbor_list] skin smaller",
-            config.file, what,
+            box_from_file || config.lengths_where.empty() ? config.file : config.lengths_where,
+            what,
             box_from_file ? " (of the [initial] file " + *config.initial_file + ")"
                           : std::string(" ([box] length)")));
     }

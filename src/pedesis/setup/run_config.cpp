@@ -28,11 +28,13 @@ void read_box(ConfigTable& t, RunConfig& c) {
     const auto d = static_cast<std::size_t>(c.dimension);
     if (box->has("lengths") && box->has("length"))
         throw InputError(box->where("length") + ": give either length or lengths, not both");
-    if (auto ls = box->numbers("lengths", d))
+    if (auto ls = box->numbers("lengths", d)) {
         c.box_lengths = *ls;
-    else if (auto l = box->number("length"))
+        c.lengths_where = box->where("lengths");
+    } else if (auto l = box->number("length")) {
         c.box_lengths.assign(d, *l);
-    else
+        c.lengths_where = box->where("length");
+    } else
         throw InputError(c.file + ": [box] needs length (cube) or lengths (one per axis)");
     double volume = 1.0;
     for (double l : c.box_lengths) {

@@ -40,6 +40,7 @@ struct RunConfig {
     std::vector<double> box_lengths; // soft engines: may be empty (box from the initial file)
     std::vector<bool> periodic;
     std::string boundary_where; // "file:line:col: key 'box.boundary'" if given, for messages
+    std::string lengths_where;  // of box.length or box.lengths, for messages
 
     std::vector<SpeciesConfig> species;
     SpeciesConfig species_defaults; // from [initial], for species a soft run takes from its file
