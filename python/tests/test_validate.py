@@ -180,3 +180,13 @@ def test_a_signal_stops_the_suite_and_its_runs(pedesis_bin, tmp_path):
     assert not (out / "report.md").exists()
     left = subprocess.run(["pgrep", "-f", str(out)], capture_output=True, text=True).stdout
     assert left == "", left
+
+
+def test_list_gives_each_case_a_whole_first_sentence(capsys):
+    # lennard_jones' summary was cut inside its parenthesis at the ": " within it
+    assert validate_main.main(["--list"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == len(validate.CASES)
+    for line in lines:
+        assert line.count("(") == line.count(")"), line
+    assert any("tail = true: U and P of the log include them)" in line for line in lines)

@@ -57,6 +57,18 @@ def _interrupt(number, frame):
     raise KeyboardInterrupt
 
 
+def first_sentence(doc):
+    """A case's docstring up to its first ". " or ": " outside parentheses (a cut inside
+    one left "([[force]] tail = true" hanging)."""
+    text = " ".join(doc.split())
+    depth = 0
+    for k, ch in enumerate(text):
+        depth += {"(": 1, ")": -1}.get(ch, 0)
+        if depth == 0 and ch in ".:" and text[k + 1:k + 2] in (" ", ""):
+            return text[:k]
+    return text
+
+
 def main(argv):
     args = parse(argv)
     try:
@@ -68,7 +80,7 @@ def main(argv):
         return 2
     if args.list:
         for name, fn, quick in CASES:
-            summary = " ".join(fn.__doc__.split()).split(": ")[0].split(". ")[0]
+            summary = first_sentence(fn.__doc__)
             print(f"{name:18s} {summary}{'' if quick else ' (full suite only)'}")
         return 0
     mode = "quick" if args.quick else "full"
