@@ -5,7 +5,7 @@
 // absurd density instead of always "reduce dt".
 #include "cli/cli_support.hpp"
 
-#include <regex>
+#include <cmath>
 
 namespace pedesis::test {
 namespace {
