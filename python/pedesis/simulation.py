@@ -9,10 +9,35 @@ callbacks of the script's own on triggers.
     sim.run(steps=1000)   # 1000 more steps (or until the config's stop condition)
     sim.run()             # on to the config's stop condition, then the end of the run
 """
+import math
+import numbers
 from dataclasses import dataclass
 from typing import Callable, Optional
 
 from . import _pedesis
+
+
+def _count(value, what, positive):
+    """value as an int (> 0 if positive, else >= 0), or InputError naming `what`: a bool or
+    2.5 is no count of steps."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise _pedesis.InputError(f"{what} must be a whole number of time steps (an int), "
+                                  f"not {value!r}")
+    if value < 0 or (positive and value == 0):
+        raise _pedesis.InputError(f"{what} must be {'positive' if positive else '>= 0'}, "
+                                  f"not {value!r}")
+    return int(value)
+
+
+def _duration(value, what, positive):
+    """value as a finite float (> 0 if positive, else >= 0), or InputError naming `what`."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise _pedesis.InputError(f"{what} must be a number of time units, not {value!r}")
+    value = float(value)
+    if not math.isfinite(value) or value < 0 or (positive and value == 0):
+        bound = "positive finite number" if positive else "finite number >= 0"
+        raise _pedesis.InputError(f"{what} must be a {bound}, not {value!r}")
+    return value
 
 
 @dataclass(frozen=True)
@@ -21,6 +46,17 @@ class Periodic:
     grid anchored at step 0 / t = 0. The event engine has no steps: give it time."""
     steps: Optional[int] = None
     time: Optional[float] = None
+
+    def __post_init__(self):
+        # refused when made, not later when appended to a Simulation, where the mistake
+        # would be far from the line that made it
+        if (self.steps is None) == (self.time is None):
+            raise _pedesis.InputError("Periodic: give steps or time, one of them (got "
+                                      f"steps={self.steps!r}, time={self.time!r})")
+        if self.steps is not None:
+            object.__setattr__(self, "steps", _count(self.steps, "Periodic: steps", True))
+        else:
+            object.__setattr__(self, "time", _duration(self.time, "Periodic: time", True))
 
 
 @dataclass(frozen=True)
@@ -137,6 +173,12 @@ class Simulation:
         condition's name once it is met, else None. The GIL is released; Ctrl-C stops the
         engine within a step and raises KeyboardInterrupt, with the state intact (run()
         goes on from there, close() ends the run directory)."""
+        if steps is not None and time is not None:
+            raise _pedesis.InputError("Simulation.run: give steps or time, not both")
+        if steps is not None:
+            steps = _count(steps, "Simulation.run: steps", False)
+        if time is not None:
+            time = _duration(time, "Simulation.run: time", False)
         why = self._run.advance(steps, time)
         if why is not None and not self._run.closed:
             self._run.close("")

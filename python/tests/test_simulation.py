@@ -265,3 +265,41 @@ def test_set_restitution_of_an_event_run_at_a_time_off_the_grid_replays(tmp_path
     run_cli("run", cfg, "--out", tmp_path / "cli", "--steering", tmp_path / "py" / "steering.csv")
     for f in ("log.csv", "checkpoint.bin", "steering.csv"):
         assert (tmp_path / "cli" / f).read_bytes() == (tmp_path / "py" / f).read_bytes(), f
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({}, "give steps or time, one of them"),
+    ({"steps": 1, "time": 1.0}, "give steps or time, one of them"),
+    ({"steps": -5}, "steps must be positive, not -5"),
+    ({"steps": 0}, "steps must be positive, not 0"),
+    ({"steps": 2.5}, r"steps must be a whole number of time steps \(an int\), not 2.5"),
+    ({"steps": True}, r"steps must be a whole number"),
+    ({"time": 0.0}, "time must be a positive finite number, not 0.0"),
+    ({"time": float("inf")}, "time must be a positive finite number, not inf"),
+    ({"time": "1"}, "time must be a number of time units, not '1'"),
+])
+def test_a_periodic_trigger_is_refused_when_made(kwargs, message):
+    # (Periodic() and Periodic(steps=1, time=1.0) were made and refused only when
+    # appended; steps=-5 or 2.5 reached pybind11 as "incompatible function arguments")
+    with pytest.raises(pedesis.InputError, match=f"^Periodic: {message}"):
+        pedesis.Periodic(**kwargs)
+
+
+def test_periodic_takes_numpy_and_int_values():
+    assert pedesis.Periodic(steps=np.int64(3)).steps == 3
+    assert type(pedesis.Periodic(steps=np.int64(3)).steps) is int
+    assert pedesis.Periodic(time=2).time == 2.0
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"steps": -1}, "steps must be >= 0, not -1"),
+    ({"steps": 2.5}, r"steps must be a whole number of time steps \(an int\), not 2.5"),
+    ({"time": -1.0}, "time must be a finite number >= 0, not -1.0"),
+    ({"time": float("nan")}, "time must be a finite number >= 0, not nan"),
+    ({"steps": 10, "time": 1.0}, "give steps or time, not both"),
+])
+def test_simulation_run_refuses_bad_arguments_by_name(tmp_path, kwargs, message):
+    sim = pedesis.Simulation.from_file(write(tmp_path, "soft", SOFT), out=tmp_path / "out")
+    with pytest.raises(pedesis.InputError, match=f"^Simulation.run: {message}"):
+        sim.run(**kwargs)
+    assert sim.step == 0  # nothing ran
