@@ -83,9 +83,15 @@ TEST_F(Messages, ACrowdedRandomPlacementNamesMinDistance) {
     const double length = std::sqrt(400 * 0.7853981633974483 / 0.65);
     const CliResult r = run(wca(2, 400, length, 0.95, 0.001));
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    expect_in(r, {"could not place particle", "diameter 0.95", "([initial] min_distance)",
-                  "would cover 0.587 of the region", "Lower [initial] min_distance to about",
-                  "positions = \"hexagonal\""});
+    expect_in(r, {"cfg.toml:6:1: species 'A': could not place particle", "diameter 0.95",
+                  "([initial] min_distance)", "would cover 0.587 of the region",
+                  "positions = \"hexagonal\"", "lower [initial] min_distance to about 0.82"});
+    // 800 of them in 12 x 12 do not fit however they are placed: no min_distance helps
+    const CliResult overfull = run(wca(2, 800, 12.0, 0.95, 0.001));
+    EXPECT_EQ(overfull.exit_code, 2) << overfull.output;
+    expect_in(overfull, {"the particles themselves, disks of diameter 1", "would fill 4.36",
+                         "give a larger box or fewer particles"});
+    EXPECT_EQ(overfull.output.find("min_distance to about"), std::string::npos) << overfull.output;
 }
 
 TEST_F(Messages, AnOverfullBoxSaysWhichBoxWouldDo) {
@@ -113,6 +119,39 @@ TEST_F(Messages, ABlowUpInAnAbsurdDensitySaysSo) {
     EXPECT_EQ(r.exit_code, 3) << r.output;
     expect_in(r, {"Likely cause: the density", "fill 4.19 of the box", "close packing (0.7405)",
                   "larger box or fewer particles"});
+}
+
+TEST_F(Messages, AHarmonicBlowUpIsNotBlamedOnTheDensity) {
+    // the ABP tutorial's harmonic disks overlap by design (they fill 1.26 of the box as
+    // disks of diameter a = 2), and its force is bounded: a blow-up there is dt's
+    const CliResult r = run_pedesis(std::string("run '") + PEDESIS_SOURCE_DIR +
+                                        "/examples/abp_tutorial.toml' --set run.dt=0.5 --out out",
+                                    dir, 120);
+    EXPECT_EQ(r.exit_code, 3) << r.output;
+    expect_in(r, {"moved", "reduce dt (now 0.5)"});
+    EXPECT_EQ(r.output.find("Likely cause"), std::string::npos) << r.output;
+}
+
+TEST_F(Messages, SetUpRefusalsNameTheirLine) {
+    // a velocity distribution misspelt in [initial]: its line, not a species
+    std::string v = small_config();
+    v.replace(v.find("[run]"), 5, "[initial]\nvelocities = \"maxwell\"\n[run]");
+    const CliResult velocities = run(v);
+    EXPECT_EQ(velocities.exit_code, 2) << velocities.output;
+    expect_in(velocities, {"cfg.toml:12:14: key 'initial.velocities': unknown velocity "
+                           "distribution 'maxwell'"});
+    // a periodic box too short for the event engine's lists: box.length's line
+    std::string e = small_config("", "length = 2.1");
+    e.replace(e.find("boundary = \"wall\"\n"), 18, "");
+    e.replace(e.find("count = 50"), 10, "count = 1");
+    const CliResult edge = run(e);
+    EXPECT_EQ(edge.exit_code, 2) << edge.output;
+    expect_in(edge, {"cfg.toml:4:10: key 'box.length': periodic length 2.1 must be at least 2.2 "
+                     "times the largest contact distance (1)"});
+    // a logged quantity this engine does not measure: log.quantities' line
+    const CliResult log = run(small_config() + "[log]\nquantities = [\"time\", \"polar_order\"]\n");
+    EXPECT_EQ(log.exit_code, 2) << log.output;
+    expect_in(log, {"cfg.toml:17:14: key 'log.quantities': 'polar_order' is not measured"});
 }
 
 TEST_F(Messages, ABlowUpOfAGoodStartStillSaysReduceDt) {

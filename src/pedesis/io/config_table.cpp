@@ -2,6 +2,8 @@
 
 #include "pedesis/core/error.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,12 +11,26 @@
 
 namespace pedesis {
 
-toml::table parse_toml_file(const std::string& path) {
+std::string read_config_file(const std::string& path) {
+    // a directory opens as an empty file: read, it would pass for a config with no tables
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        const std::filesystem::path inside = std::filesystem::path(path) / "config.toml";
+        throw InputError(fmt::format(
+            "{}: is a directory, not a config file{}", path,
+            std::filesystem::is_regular_file(inside, ec)
+                ? fmt::format(" (it holds the config of its run: give {})", inside.string())
+                : std::string()));
+    }
     std::ifstream in(path);
     if (!in) throw InputError(path + ": cannot open config file");
     std::stringstream buf;
     buf << in.rdbuf();
-    return parse_toml_text(buf.str(), path);
+    return buf.str();
+}
+
+toml::table parse_toml_file(const std::string& path) {
+    return parse_toml_text(read_config_file(path), path);
 }
 
 toml::table parse_toml_text(const std::string& text, const std::string& name) {
@@ -59,6 +75,12 @@ std::string ConfigTable::where(const std::string& key) const {
     if (src.begin.line > 0) m << ":" << src.begin.line << ":" << src.begin.column;
     m << ": key '" << full_key(key) << "'";
     return m.str();
+}
+
+std::string ConfigTable::location() const {
+    const auto& src = table_->source();
+    return src.begin.line > 0 ? fmt::format("{}:{}:{}", file_, src.begin.line, src.begin.column)
+                              : file_;
 }
 
 void ConfigTable::fail(const std::string& key, const std::string& what) const {

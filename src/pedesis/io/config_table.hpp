@@ -49,6 +49,8 @@ class ConfigTable {
 
     // "file:line:column: key 'prefix.key'" for messages about a value.
     std::string where(const std::string& key) const;
+    // "file:line:column" of the table itself, for messages about it as a whole.
+    std::string location() const;
     const std::string& file() const { return file_; }
     std::string full_key(const std::string& key) const {
         return prefix_.empty() ? key : prefix_ + "." + key;
@@ -65,6 +67,8 @@ class ConfigTable {
     std::shared_ptr<const UnknownKeyNote> note_;
 };
 
+// A config file's text; a directory or an unreadable file is an InputError naming it.
+std::string read_config_file(const std::string& path);
 // Parses a TOML file; malformed files give "file:line:column: message".
 toml::table parse_toml_file(const std::string& path);
 toml::table parse_toml_text(const std::string& text, const std::string& name);

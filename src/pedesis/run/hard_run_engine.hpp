@@ -24,7 +24,9 @@ template <int D> class HardRunEngine : public RunEngine<D> {
                 c_.checkpoint_interval > 0 ? Trigger::every_time(c_.checkpoint_interval)
                                            : Trigger::never()};
     }
-    OutputChoice outputs() const { return {c_.formats, c_.log_quantities}; }
+    OutputChoice outputs() const {
+        return {c_.formats, c_.log_quantities, c_.log_quantities_where};
+    }
 
     std::uint64_t frames() const override { return record_.frames; }
     void frame_written() override { ++record_.frames; }
@@ -42,6 +44,9 @@ template <int D> class HardRunEngine : public RunEngine<D> {
             const std::string what = e.what();
             for (const std::string& named : {c_.file, c_.initial_file.value_or(c_.file)})
                 if (what.rfind(named + ":", 0) == 0) throw; // names its file already
+            // the engine's refusals of the box are about [box] length(s): their line
+            if (what.starts_with("box: ") && !c_.lengths_where.empty())
+                throw InputError(c_.lengths_where + ": " + what.substr(5));
             throw InputError(c_.initial_file.value_or(c_.file) + ": " + what);
         }
     }

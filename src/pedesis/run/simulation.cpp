@@ -38,7 +38,10 @@ Simulation<D>::Simulation(RunEngine<D>& engine, Schedule schedule, OutputChoice 
         if (it == logged.end()) {
             std::string known;
             for (const std::string& l : logged) known += (known.empty() ? "" : ", ") + l;
-            throw InputError(options_.config_path.string() + ": [log] quantities: '" + name +
+            const std::string where = outputs_.quantities_where.empty()
+                                          ? options_.config_path.string() + ": [log] quantities"
+                                          : outputs_.quantities_where;
+            throw InputError(where + ": '" + name +
                              "' is not measured by this run (it measures: " + known + ")");
         }
         columns_.push_back(static_cast<std::size_t>(it - logged.begin()));

@@ -30,6 +30,7 @@ struct Schedule {
 struct OutputChoice {
     std::vector<std::string> formats;
     std::vector<std::string> quantities;
+    std::string quantities_where; // "file:line:col: key 'log.quantities'", for messages
 };
 
 // An engine built from a config, with what the config asks of its run directory.

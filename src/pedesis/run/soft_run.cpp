@@ -331,7 +331,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
-    OutputChoice outputs() const { return {c_.formats, c_.log_quantities}; }
+    OutputChoice outputs() const {
+        return {c_.formats, c_.log_quantities, c_.log_quantities_where};
+    }
 
     // temperature: of the position integrators (brownian, langevin), every species;
     // alpha: of self_propulsion, every species; J: of polar_align.

@@ -25,7 +25,8 @@ template <int D> Vec<D> to_vec(const std::vector<double>& v) {
 }
 
 std::string species_label(const RunConfig& c, std::size_t s) {
-    return c.file + ": species '" + c.species[s].name + "'";
+    const std::string& at = c.species[s].location;
+    return (at.empty() ? c.file : at) + ": species '" + c.species[s].name + "'";
 }
 
 // Region the centres of species s may occupy, and which of its axes are closed
@@ -79,6 +80,7 @@ void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::si
         // soft particles may overlap (the ABP tutorial's builder keeps only centres rcut
         // apart): for them only [initial] min_distance constrains the placement
         req.radius = c.soft() ? 0.0 : sp.radius;
+        req.body_radius = sp.radius;
         req.lo = reg.lo;
         req.hi = reg.hi;
         req.min_distance = c.min_distance;
@@ -247,9 +249,18 @@ ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box,
         // (a GSD file's box is single precision)
         const double box_tolerance = std::max(1e-9, f.precision);
         if (f.box) {
+            std::string file_box, config_box;
+            for (int a = 0; a < D; ++a) {
+                file_box += fmt::format("{}{:.9g}", a ? " x " : "", (*f.box)[a]);
+                config_box += fmt::format("{}{:.9g}", a ? " x " : "", box.length(a));
+            }
             for (int a = 0; a < D; ++a)
                 if (std::abs((*f.box)[a] - box.length(a)) > box_tolerance * box.length(a))
-                    throw InputError(*c.initial_file + ": box does not match [box] of " + c.file);
+                    throw InputError(fmt::format(
+                        "{}: box does not match [box] of {}: the file's is {}, [box] gives {}{}",
+                        *c.initial_file, c.lengths_where.empty() ? c.file : c.lengths_where,
+                        file_box, config_box,
+                        c.soft() ? " (leave [box] out to take the file's)" : ""));
         }
         check_file_boundary<D>(f, box, c);
         // tags follow the file's ids in increasing order

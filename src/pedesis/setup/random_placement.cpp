@@ -18,36 +18,53 @@ namespace {
 // Why random placement gave up, from what it was asked: the space each particle keeps
 // free (its diameter, or min_distance where that is larger) and the share of the
 // region those spaces cover, against the limit where random sequential addition jams.
+double ball_of(double diameter, int dim) {
+    return dim == 2 ? std::numbers::pi / 4.0 * diameter * diameter
+                    : std::numbers::pi / 6.0 * diameter * diameter * diameter;
+}
+
 template <int D>
 std::string crowded_message(const PlacementRequest<D>& req, std::size_t k, std::size_t total,
                             int attempts) {
     const double keep = std::max(2.0 * req.radius, req.min_distance);
     double region = 1.0;
     for (int a = 0; a < D; ++a) region *= req.hi[a] - req.lo[a];
-    const double ball =
-        D == 2 ? std::numbers::pi / 4.0 * keep * keep : std::numbers::pi / 6.0 * keep * keep * keep;
-    const double covered = static_cast<double>(total) * ball / region;
+    const double n = static_cast<double>(total);
+    const char* ball = D == 2 ? "disk" : "sphere";
+    const char* lattice = D == 2 ? "hexagonal" : "fcc";
+    const double close_packing = D == 2 ? 0.9069 : 0.7405;
+    const std::string head =
+        fmt::format("{}: could not place particle {} of {} at random without overlap after {} "
+                    "attempts",
+                    req.what, k + 1, req.count, attempts);
+    // the particles themselves do not fit: no placement and no min_distance helps
+    const double body = 2.0 * (req.body_radius >= 0.0 ? req.body_radius : req.radius);
+    const double filled = n * ball_of(body, D) / region;
+    if (filled > close_packing)
+        return fmt::format("{}: the particles themselves, {}s of diameter {:g} (twice the "
+                           "species' radius), would fill {:.3g} of the region, more than close "
+                           "packing ({}) allows; give a larger box or fewer particles",
+                           head, ball, body, filled, close_packing);
+    const double covered = n * ball_of(keep, D) / region;
     const double jams = D == 2 ? 0.547 : 0.38; // random sequential addition's limit
     const bool min_distance_binds = req.min_distance > 2.0 * req.radius;
     std::string m = fmt::format(
-        "{}: could not place particle {} of {} at random without overlap after {} attempts: "
-        "each keeps a {} of diameter {:g} free of other centres ({}), and {} of them would "
-        "cover {:.3g} of the region, where random placement jams near {} ",
-        req.what, k + 1, req.count, attempts, D == 2 ? "disk" : "sphere", keep,
-        min_distance_binds ? "[initial] min_distance" : "its diameter", total, covered, jams);
-    if (min_distance_binds) {
-        const double lower = keep * std::pow(0.8 * jams / std::max(covered, jams), 1.0 / D);
-        m += fmt::format("(or sooner, with other species). Lower [initial] min_distance to about "
-                         "{:.2g} (soft particles push small overlaps apart in their first "
-                         "steps), place them on a lattice (positions = \"{}\"), or give a "
-                         "larger box",
-                         lower, D == 2 ? "hexagonal" : "fcc");
-    } else {
-        m += fmt::format("(or sooner, with other species). Place them on a lattice (positions = "
-                         "\"{}\"), or give a larger box",
-                         D == 2 ? "hexagonal" : "fcc");
-    }
-    return m;
+        "{}: each keeps a {} of diameter {:g} free of other centres ({}), and {} of them "
+        "would cover {:.3g} of the region, where random placement jams near {} (or sooner, "
+        "with other species). Place them on a lattice (positions = \"{}\"), which holds them "
+        "up to close packing",
+        head, ball, keep, min_distance_binds ? "[initial] min_distance" : "its diameter", total,
+        covered, jams, lattice);
+    // a smaller min_distance that random placement reaches, no smaller than a hard
+    // particle's contact
+    const double lower =
+        std::max(2.0 * req.radius, keep * std::pow(0.8 * jams / std::max(covered, jams), 1.0 / D));
+    if (min_distance_binds && lower < keep)
+        m += fmt::format(", or lower [initial] min_distance to about {:.2g}{}", lower,
+                         req.radius > 0.0 ? ""
+                                          : " (soft particles then start closer than that: "
+                                            "the first steps push them apart, given a small dt)");
+    return m + ", or give a larger box";
 }
 
 } // namespace

@@ -10,7 +10,8 @@ namespace pedesis {
 
 template <int D> struct PlacementRequest {
     std::size_t count = 0;
-    double radius = 0.5;
+    double radius = 0.5;         // centres at least 2 radius apart (0: soft particles)
+    double body_radius = -1.0;   // the particles' size, where radius is 0 for overlap (-1: radius)
     Vec<D> lo{}, hi{};           // region for the centres
     double min_distance = 0.0;   // centres at least max(r_i + r_j, min_distance) apart
     std::uint32_t first_tag = 0; // tags first_tag, first_tag + 1, ... key the random streams

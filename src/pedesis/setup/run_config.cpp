@@ -7,6 +7,7 @@
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/setup/lattice.hpp"
+#include "pedesis/setup/velocities.hpp"
 #include "pedesis/soft/integrator_set.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 
@@ -58,7 +59,15 @@ void read_box(ConfigTable& t, RunConfig& c) {
 }
 
 void read_velocity_keys(ConfigTable& t, SpeciesConfig& s, std::size_t d) {
-    if (auto v = t.string("velocities")) s.velocities = *v;
+    if (auto v = t.string("velocities")) {
+        // checked at its line, as positions is (a typo used to name only the species)
+        if (*v != "given") try {
+                parse_velocity_kind(*v);
+            } catch (const InputError& e) {
+                throw InputError(t.where("velocities") + ": " + e.what());
+            }
+        s.velocities = *v;
+    }
     if (auto v = t.number("speed")) s.speed = *v;
     if (auto v = t.number("sigma")) s.sigma = *v;
     if (auto v = t.number("temperature")) s.temperature = *v;
@@ -107,6 +116,7 @@ void read_species(ConfigTable& root, RunConfig& c, const SpeciesConfig& defaults
     std::set<std::string> names;
     for (auto& t : list) {
         SpeciesConfig s = defaults;
+        s.location = t.location();
         s.name = t.string("name").value_or(
             std::string(1, static_cast<char>('A' + c.species.size() % 26)));
         if (!valid_species_name(s.name))
@@ -569,6 +579,7 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
                 c.log_quantities.push_back(*name);
             }
             log->strings("quantities", arr->size()); // marks the key as read
+            c.log_quantities_where = log->where("quantities");
         }
         log->finish();
     }

@@ -14,6 +14,7 @@ struct SpeciesConfig {
     std::string name;
     std::optional<std::size_t> count; // may come from the initial-configuration file
     std::string count_where;          // "file:line:col: key '...count'", for messages
+    std::string location;             // "file:line:col" of its [[species]] table
     double radius = 0.5;
     double mass = 1.0;
     // placement (defaults from [initial])
@@ -79,6 +80,7 @@ struct RunConfig {
     std::vector<std::string> formats = {"gsd"};
     // [log] quantities: the columns of log.csv, in order (empty: all the engine measures)
     std::vector<std::string> log_quantities;
+    std::string log_quantities_where; // for messages
     int histogram_bins = 50;
     std::optional<double> histogram_start; // unset: histogram of the final state only
     double checkpoint_interval = 0.0;      // 0: only at the end

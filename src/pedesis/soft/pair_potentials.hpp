@@ -38,9 +38,10 @@ struct HarmonicPair {
     bool operator==(const HarmonicPair& o) const { return k == o.k && a == o.a; }
     PEDESIS_HD double range(double rsum) const { return a > 0.0 ? a : rsum; }
     double max_range(double max_rsum) const { return range(max_rsum); }
-    // the distance inside which the pair repels (what a blow-up's message measures
-    // overlaps and the density against): its whole range
-    double core(double rsum) const { return range(rsum); }
+    // none: its force is bounded (k a at most), so harmonic particles may overlap, by
+    // any amount and at any density, without a blow-up (what a blow-up's message
+    // measures overlaps and the density against: soft/blow_up_cause.hpp)
+    double core(double) const { return 0.0; }
     // F/r for a pair inside the range (the pair loop filters by range first)
     PEDESIS_HD double force_over_r(double r2, double rsum) const {
         return force_over_r_at(std::sqrt(r2), rsum);

@@ -26,9 +26,10 @@ template <int D> class ForceTerm {
     virtual std::string name() const = 0;
     // Largest pair distance the term needs (0 for one-body terms).
     virtual double range(const SoftState<D>&) const { return 0.0; }
-    // The distance inside which a pair of species a and b repels strongly (a Lennard-Jones
-    // sigma, a harmonic range; 0 for terms without one): what a blow-up's message
-    // measures overlaps and the density against (soft/blow_up_cause.hpp).
+    // The distance inside which the force between species a and b grows without bound (a
+    // Lennard-Jones sigma; 0 for terms without such a core, harmonic among them): what a
+    // blow-up's message measures overlaps and the density against
+    // (soft/blow_up_cause.hpp).
     virtual double core(const SoftState<D>&, std::size_t /*a*/, std::size_t /*b*/) const {
         return 0.0;
     }
