@@ -110,7 +110,8 @@ PluginKind kind_of(const std::string& kind) {
 
 void add_term(PyEvolver& e, const PyPlugin& p, PluginKind expected, const char* method) {
     if (p.spec.kind != expected)
-        throw InputError(fmt::format("Evolver.{}: {} is a {}; use Evolver.add_{}", method, p.label,
+        throw InputError(fmt::format("Evolver.{}: {} is {} {}; use Evolver.add_{}", method, p.label,
+                                     p.spec.kind == PluginKind::integrator ? "an" : "a",
                                      kind_name(p.spec.kind), kind_name(p.spec.kind)));
     e.model->add(p.spec);
 }

@@ -162,3 +162,12 @@ def test_a_simulation_refuses_settings_it_would_ignore(tmp_path, repo):
         sim.step = 5
     sim.out_dir = tmp_path / "abp"  # what from_file sets stays settable
     assert sim.step == 0
+
+
+def test_a_term_added_as_the_wrong_kind_says_which_kind_it_is(system):
+    e = pedesis.Evolver(system)
+    with pytest.raises(pedesis.InputError,
+                       match="BrownianIntegrator is an integrator; use Evolver.add_integrator"):
+        e.add_force(brownian(system))
+    with pytest.raises(pedesis.InputError, match="PolarAlign is a torque; use Evolver.add_torque"):
+        e.add_integrator(align(system))
