@@ -43,7 +43,6 @@ def main():
     left.set_title(f"last frame: {final}")
     figure.title(fig, run, "Bond order")
     fig.tight_layout()
-    figure.save(fig, a.out)
     print(f"last frame: {final} ({len(t)} frames)")
-    return 0
+    return figure.save(fig, a.out)
 

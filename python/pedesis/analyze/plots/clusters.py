@@ -121,7 +121,6 @@ def main():
     right.set_ylabel("clusters (last frame)")
     figure.title(fig, run, "Clusters and local density")
     fig.tight_layout()
-    figure.save(fig, a.out)
     print(f"second half, pooled: peaks at {', '.join(f'{p:.2f}' for p in sorted(peaks))}; "
           f"{verdict}")
-    return 0
+    return figure.save(fig, a.out)

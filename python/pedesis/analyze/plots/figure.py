@@ -63,7 +63,8 @@ def pyplot():
 
 def save(fig, out):
     """Writes NAME.tmp.EXT beside the output and renames it over it, so a reader never
-    sees a half-written plot; prints the path."""
+    sees a half-written plot; returns the path, which a figure's main() returns for
+    main_guard to print last."""
     tmp = out.with_name(f"{out.stem}.tmp{out.suffix}")
     try:
         fig.savefig(tmp, dpi=DPI, format=out.suffix[1:].lower())
@@ -71,7 +72,7 @@ def save(fig, out):
     except OSError as e:
         tmp.unlink(missing_ok=True)
         raise InputError(f"{out}: cannot be written: {e.strerror or e}") from None
-    print(f"wrote {out}")
+    return out
 
 
 # --- titles --------------------------------------------------------------------------

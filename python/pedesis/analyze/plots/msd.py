@@ -13,7 +13,7 @@ Usage: msd.py RUN_DIR [--out FILE]   (default RUN_DIR/msd.png)
 import numpy as np
 
 from . import figure
-from .run_dir import InputError, require_columns
+from .run_dir import InputError
 
 
 def free_abp_msd(t, dim, Dt, v0, Dr):
@@ -106,13 +106,12 @@ def main():
     a, run = figure.open_run(__doc__.split("\n")[0], "msd.png")
     out = a.out
     log_path = run.path / "log.csv"
-    log = run.log()
-    hard = ("; its frames carry no image counts: from frames written often enough, "
-            "pa.msd(pa.unwrap(traj.positions, traj.box)) in Python, docs/analyze.md"
-            if not run.soft else "")
-    require_columns(log, log_path, ["msd"],
-                    f"the MSD is logged by soft/active runs only (dynamics brownian, langevin "
-                    f"or nve; this run's dynamics is '{run.dynamics}'{hard})")
+    elsewhere = None if run.soft else (
+        f"the MSD is logged by soft/active runs only (dynamics brownian, langevin or nve; "
+        f"this run's dynamics is '{run.dynamics}'; its frames carry no image counts: from "
+        "frames written often enough, pa.msd(pa.unwrap(traj.positions, traj.box)) in "
+        "Python, docs/analyze.md)")
+    log = run.log(("time", "msd"), "msd", elsewhere)
     keep = (log["time"] > 0) & (log["msd"] > 0)
     if not keep.any():
         raise InputError(f"{log_path}: no row with t > 0 and msd > 0 to draw on log axes")
@@ -162,5 +161,4 @@ def main():
     ax_ratio.grid(alpha=0.3, which="both")
     figure.title(fig, run, "Mean squared displacement")
     fig.tight_layout()
-    figure.save(fig, out)
-    return 0
+    return figure.save(fig, out)

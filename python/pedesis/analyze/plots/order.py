@@ -7,17 +7,15 @@ Usage: order.py RUN_DIR [--out FILE]   (default RUN_DIR/order.png)
 import math
 
 from . import figure
-from .run_dir import InputError, require_columns
+from .run_dir import InputError
 
 
 def main():
     a, run = figure.open_run(__doc__.split("\n")[0], "order.png")
     out = a.out
-    log_path = run.path / "log.csv"
-    log = run.log()
-    require_columns(log, log_path, ["polar_order"],
-                    f"the polar order is logged by soft/active runs only (dynamics brownian, "
-                    f"langevin or nve; this run's dynamics is '{run.dynamics}')")
+    log = run.log(("time", "polar_order"), "order", None if run.soft else (
+        f"the polar order is logged by soft/active runs only (dynamics brownian, langevin or "
+        f"nve; this run's dynamics is '{run.dynamics}')"))
     t, P = log["time"], log["polar_order"]
     n = run.particle_count()
     if n is None:
@@ -42,5 +40,4 @@ def main():
                  f"{P[1:].mean() if len(P) > 1 else P[0]:.3f}")
     figure.title(fig, run, "Polar order")
     fig.tight_layout()
-    figure.save(fig, out)
-    return 0
+    return figure.save(fig, out)

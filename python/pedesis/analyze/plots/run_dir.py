@@ -23,12 +23,16 @@ class InputError(Exception):
 
 
 def main_guard(main):
-    """Runs main() and maps InputError to exit status 2 with one line on stderr."""
+    """Runs a figure's main(), which returns the file it wrote, and prints `wrote PATH`
+    after the figure's own lines, in one place so that every figure ends the same way
+    (docs/analyze.md); maps InputError to exit status 2 with one line on stderr."""
     try:
-        return main()
+        out = main()
     except InputError as e:
         sys.stderr.write(f"pedesis: error: {e}\n")
         return 2
+    print(f"wrote {out}")
+    return 0
 
 
 class Run:
@@ -111,8 +115,27 @@ class Run:
 
     # --- log.csv ---------------------------------------------------------------------
 
-    def log(self):
-        return read_log(self.path / "log.csv")
+    def log(self, needs=("time",), figure="this figure", elsewhere=None):
+        """log.csv (see read_log) with the columns ``needs`` that ``figure`` draws, time
+        first. ``elsewhere``: why this run's engine logs none of needs[1:] (a soft run's
+        column asked of an event run), said when they are missing. Otherwise a missing
+        column was left out by the run's [log] quantities, and the message says so."""
+        path = self.path / "log.csv"
+        log = read_log(path)
+        if elsewhere is not None:
+            require_columns(log, path, needs[1:], elsewhere)
+        missing = [c for c in needs if c not in log]
+        if not missing:
+            return log
+        needed = (f"{figure} needs the column{'s' if len(needs) > 1 else ''} "
+                  f"{_and(needs)}")
+        if "quantities" in self.config.get("log", {}):
+            columns = _and(repr(c) for c in missing)
+            toml_names = _and('"' + c + '"' for c in missing)
+            raise InputError(f"{path}: no column {columns}: the run's [log] quantities left "
+                             f"out {_and(missing)}, and {needed}; add {toml_names} to [log] "
+                             "quantities and run again")
+        require_columns(log, path, missing, needed)  # (raises: missing is not empty)
 
     # --- frames ----------------------------------------------------------------------
 
@@ -136,9 +159,9 @@ def read_log(path):
         raise InputError(f"{path}: cannot be read as CSV: {e}") from None
     if not rows or not rows[0]:
         raise InputError(f"{path}: empty (no header line)")
+    # (no column is required here: [log] quantities chooses them; Run.log checks a
+    # figure's own)
     header = [h.strip() for h in rows[0]]
-    if "time" not in header:
-        raise InputError(f"{path}: no 'time' column in the header (is it a pedesis log?)")
     if len(set(header)) != len(header):
         raise InputError(f"{path}: a column name appears twice in the header")
     data = []
@@ -165,6 +188,12 @@ def _is_number(text):
         return True
     except ValueError:
         return False
+
+
+def _and(names):
+    """'a', 'a and b', 'a, b and c'."""
+    names = list(names)
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
 
 
 def require_columns(log, path, columns, why):
@@ -226,7 +255,7 @@ def _log_end_time(run):
         return None
     try:
         return float(read_log(path)["time"][-1])
-    except InputError:
+    except (InputError, KeyError):
         return None
 
 
@@ -329,10 +358,12 @@ def _last_gsd_frame(run, path):
                  f"{path.name} (last frame, step {step}; float32 velocities)")
 
 
-def read_trajectory(run, most=200, last=None):
+def read_trajectory(run, most=200, last=None, skip_start=False):
     """The run's trajectory.gsd as a pedesis.analyze Trajectory: at most ``most`` frames
     evenly spread over the run (or over its ``last`` frames), the last one included; its
-    faults as InputError."""
+    faults as InputError. ``skip_start``: the run's starting frame (the file's first) is
+    left out when there are others, and only it: the ``last`` frames are counted after
+    it."""
     import gsd.hoomd
 
     from ..frames import read_frames
@@ -345,6 +376,8 @@ def read_trajectory(run, most=200, last=None):
         with gsd.hoomd.open(str(path), "rb") as traj:
             count = len(traj)
         first = 0 if last is None else max(0, count - last)
+        if skip_start and count > 1:
+            first = max(first, 1)
         picks = [first + k for k in frame_picks(count - first, most)]
         return read_frames(str(run.path), picks)
     except (OSError, RuntimeError, ValueError, KeyError) as e:

@@ -133,8 +133,7 @@ def main():
     ax_cdf.set_title("T measured per species: T = sum m v^2 / (d N)")
     figure.title(fig, run, "Speed distribution")
     fig.tight_layout()
-    figure.save(fig, out)
-    return 0
+    return figure.save(fig, out)
 
 
 def _time_averaged_histogram(run, ax, colours):

@@ -15,9 +15,9 @@ FRAMES = 10
 
 def main():
     a, run = figure.open_run(__doc__.split("\n")[0], "structure.png")
-    traj = read_trajectory(run, most=FRAMES, last=FRAMES)
     # the starting state (often a lattice) is no sample of the run's structure
-    positions = traj.positions[traj.times > traj.times[0]] if len(traj.times) > 1 else traj.positions
+    traj = read_trajectory(run, most=FRAMES, last=FRAMES, skip_start=True)
+    positions = traj.positions
     box, d = traj.box, traj.box.dimension
     n = positions.shape[1]
     density = n / box.volume
@@ -48,6 +48,5 @@ def main():
     right.legend()
     figure.title(fig, run, "Structure")
     fig.tight_layout()
-    figure.save(fig, a.out)
     print(f"g(r): highest peak at r = {peak:.4g}, g = {g.max():.4g} ({len(curves)} frames)")
-    return 0
+    return figure.save(fig, a.out)

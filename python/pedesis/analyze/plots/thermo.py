@@ -61,7 +61,7 @@ def main():
     a, run = figure.open_run(__doc__.split("\n")[0], "thermo.png")
     out = a.out
     log_path = run.path / "log.csv"
-    log = run.log()
+    log = run.log(("time",), "thermo")
     rows = panels(log, run.dimension)
     if not rows:
         raise InputError(f"{log_path}: none of the columns thermo plots (kinetic_energy*, "
@@ -109,8 +109,7 @@ def main():
             ax.grid(alpha=0.3)
     figure.title(fig, run, "Thermodynamics")
     fig.tight_layout()
-    figure.save(fig, out)
-    return 0
+    return figure.save(fig, out)
 
 
 def _equation_of_state(run, log, x, ax):
