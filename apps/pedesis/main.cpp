@@ -64,13 +64,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() != 0)
-            if (const auto message = pedesis::cli::subcommand_error(app, "pedesis")) {
-                fmt::print(stderr, "pedesis: error: {}\n", *message);
-                return pedesis::exit_input_error;
-            }
-        const int code = app.exit(e);
-        return code == 0 ? 0 : pedesis::exit_input_error;
+        // --help and --version print as CLI11 has them; every fault is one line
+        if (e.get_exit_code() == 0) return app.exit(e);
+        fmt::print(stderr, "pedesis: error: {}\n",
+                   pedesis::cli::parse_error_message(app, "pedesis", e));
+        return pedesis::exit_input_error;
     } catch (const pedesis::InputError& e) {
         // every process of an MPI job reads the same input: one message, not P copies
         if (pedesis::cli::rank_for_messages() == 0)

@@ -152,7 +152,10 @@ void add_run_command(CLI::App& app) {
         RunOptions o;
         o.comm = comm.get();
         o.config_path = a->config;
-        if (with_sets) o.config_text = with_sets->text_as_run();
+        if (with_sets) {
+            o.config_text = with_sets->text_as_run();
+            o.set_keys = with_sets->set_keys();
+        }
         o.out_dir = a->out.empty()
                         ? std::filesystem::path("runs") / std::filesystem::path(a->config).stem()
                         : std::filesystem::path(a->out);

@@ -14,4 +14,11 @@ namespace pedesis::cli {
 // where the fault is another.
 std::optional<std::string> subcommand_error(const CLI::App& root, const std::string& program);
 
+// The one line (after "pedesis: error: ") for any failed parse of `root`: a subcommand
+// fault as above; an unknown option with the command's closest known one ("unknown option
+// '--thread' of 'pedesis run' (did you mean --threads?)"); else CLI11's message after the
+// command it concerns.
+std::string parse_error_message(const CLI::App& root, const std::string& program,
+                                const CLI::ParseError& error);
+
 } // namespace pedesis::cli

@@ -98,6 +98,30 @@ TEST_F(SetOption, BadKeysAreRefused) {
     expect_refused("--set =1", {"expected KEY=VALUE"});
 }
 
+TEST_F(SetOption, MessagesSayWhatTheValueOrIndexNeeds) {
+    write("run.toml", soft());
+    // an index past the end is out of range, not a missing name
+    expect_refused("--set species.3.count=10",
+                   {"--set species.3.count=10: index 3 of [[species]] is out of range (run.toml "
+                    "has 1 entry: 0..0)"});
+    // a bare word where the file has a number or a boolean: quotes would not help
+    expect_refused("--set force.harmonic.k=abc",
+                   {"--set force.harmonic.k=abc: 'abc' is not a number, and 'force.harmonic.k' "
+                    "takes one (run.toml:11:5 gives a number)"});
+    expect_refused("--set output.progress=yes",
+                   {"'yes' is neither true nor false, which 'output.progress' takes"});
+    expect_refused("--set output.progress=True",
+                   {"'True' is not a TOML value; TOML's booleans are lower case: --set "
+                    "output.progress=true"});
+    const CliResult word =
+        run_pedesis("run run.toml --out out --set force.harmonic.k=abc", dir, 60);
+    EXPECT_EQ(word.output.find("needs quotes"), std::string::npos) << word.output;
+    // a key the --set adds that clashes with the file's: both are named
+    expect_refused("--set 'box.lengths=[12.0, 12.0]'",
+                   {"run.toml:4:10: key 'box.length': give either length or lengths, not both "
+                    "(lengths is given by --set box.lengths=[12.0, 12.0])"});
+}
+
 TEST_F(SetOption, TheFileKeepsItsLineNumbers) {
     // seed is added at the top and device under [run]: the file's fault keeps its line
     write("run.toml", soft() + "[neighbor_list]\nskin = -1.0\n");

@@ -35,6 +35,45 @@ TEST_F(Subcommands, MissingOnesListTheKnownOnes) {
     expect_message("bench", "'pedesis bench' needs a subcommand (known: event, ");
 }
 
+TEST_F(Subcommands, ParseErrorsAreOneLineAndSuggestTheOption) {
+    // the whole output is the one line (CLI11 alone adds "Run with --help ...")
+    const auto expect_only = [&](const std::string& args, const std::string& line) {
+        const CliResult r = run_pedesis(args, dir, 60);
+        EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+        EXPECT_EQ(r.output, "pedesis: error: " + line + "\n") << args;
+    };
+    expect_only("run", "pedesis run: config is required (pedesis run --help lists what it takes)");
+    expect_only("run cfg.toml --thread 2",
+                "unknown option '--thread' of 'pedesis run' (did you mean --threads?)");
+    expect_only("run cfg.toml --ot x",
+                "unknown option '--ot' of 'pedesis run' (did you mean --out?)");
+    expect_only("analyze speed RUN --bogus-option",
+                "unknown option '--bogus-option' of 'pedesis analyze speed' (its options: "
+                "--help, --out)");
+    expect_only("run --threads 0 cfg.toml",
+                "pedesis run: --threads: Value 0 not in range 1 to 1024 (pedesis run --help "
+                "lists what it takes)");
+}
+
+TEST_F(Subcommands, ADirectoryForAConfigIsNamed) {
+    std::filesystem::create_directories(dir / "runs/lj");
+    std::filesystem::create_directories(dir / "empty");
+    write("runs/lj/config.toml", small_config());
+    const auto expect_error = [&](const std::string& args, const std::string& message) {
+        const CliResult r = run_pedesis(args, dir, 60);
+        EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find("pedesis: error: " + message), std::string::npos)
+            << "missing '" << message << "' in: " << r.output;
+        EXPECT_EQ(r.output.find("[box]"), std::string::npos) << r.output;
+    };
+    const std::string holds = "runs/lj: is a directory, not a config file (it holds the config "
+                              "of its run: give runs/lj/config.toml)";
+    expect_error("run runs/lj", holds);
+    expect_error("run runs/lj --set run.time=1", holds);
+    expect_error("sweep runs/lj", holds);
+    expect_error("run empty", "empty: is a directory, not a config file\n");
+}
+
 TEST_F(Subcommands, OtherFaultsKeepTheirOwnMessage) {
     // a known subcommand with a bad argument is not a subcommand fault
     const CliResult extra = run_pedesis("run a.toml b.toml", dir, 60);

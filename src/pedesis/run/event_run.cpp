@@ -27,13 +27,11 @@ namespace pedesis {
 
 namespace {
 
-constexpr std::uint64_t run_checkpoint_magic = 0x31304e5552444550ull; // "PEDRUN01"
-
 template <int D>
 std::unique_ptr<EventEngine<D>> load_checkpoint(const std::filesystem::path& path,
                                                 const RunConfig& c, HardRunRecord<D>& s) {
     return load_hard_checkpoint<EventEngine<D>>(
-        path, run_checkpoint_magic, "not a pedesis run checkpoint", event_params(c), c, s,
+        path, event_checkpoint_magic, event_engine, event_params(c), c, s,
         [](const EventEngine<D>& e) -> const ParticleStore<D>& { return e.lazy_particles(); });
 }
 
@@ -72,8 +70,8 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         if (const char* why = o_.restart ? stop_met() : nullptr)
             throw InputError(fmt::format(
                 "{}: the checkpoint {} is at t = {:g} ({} collisions), which already meets the "
-                "stop condition ({}); raise it in [run] to continue",
-                c_.file, o_.restart->string(), engine_->time(), step(), why));
+                "{}",
+                c_.file, o_.restart->string(), engine_->time(), step(), raise_stop(o_, why)));
     }
 
     // The collisions so far stand in for steps, which this engine does not have.
@@ -99,7 +97,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     }
 
     void save_checkpoint(const std::filesystem::path& path) override {
-        save_hard_checkpoint(path, run_checkpoint_magic, *engine_, record_);
+        save_hard_checkpoint(path, event_checkpoint_magic, *engine_, record_);
     }
 
     std::vector<std::string> log_columns() const override {

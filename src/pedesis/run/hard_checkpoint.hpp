@@ -7,6 +7,7 @@
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/io/checkpoint_file.hpp"
+#include "pedesis/run/checkpoint_engines.hpp"
 #include "pedesis/run/hard_run_output.hpp"
 
 #include <cstdint>
@@ -30,10 +31,11 @@ void save_hard_checkpoint(const std::filesystem::path& path, std::uint64_t magic
 // Restores the engine with the config's parameters and checks the config's species and
 // box against the checkpoint's; `particles_of(engine)` gives the engine's particle store,
 // whose contents are checked too (checkpoint_checks.hpp).
-// Every fault is an InputError naming the file; `not_this` says what a foreign file is.
+// Every fault is an InputError naming the file; `engine` names the engine, for the message
+// about another engine's checkpoint (checkpoint_engines.hpp).
 template <class Engine, class Params, int D, class ParticlesOf>
 std::unique_ptr<Engine> load_hard_checkpoint(const std::filesystem::path& path, std::uint64_t magic,
-                                             const char* not_this, const Params& params,
+                                             const char* engine, const Params& params,
                                              const RunConfig& c, HardRunRecord<D>& s,
                                              ParticlesOf particles_of) {
     CheckpointReader file(path);
@@ -41,7 +43,7 @@ std::unique_ptr<Engine> load_hard_checkpoint(const std::filesystem::path& path, 
     try {
         std::uint64_t word = 0;
         binary::get(in, word);
-        if (word != magic) throw InputError(not_this);
+        if (word != magic) throw InputError(foreign_checkpoint(word, engine));
         auto e = std::make_unique<Engine>(Engine::load(in, params));
         s.load(in);
         file.finish();

@@ -2,10 +2,12 @@
 // What every run driver does first with its output directory: create it (snapshots/ is
 // FrameWriters', made only for the formats that write there), remove results of an
 // earlier run there that must not pass for this run's, and keep a copy of the config
-// beside the results.
+// beside the results, one that runs again from anywhere: `pedesis run DIR/config.toml`
+// (a relative [initial] file made absolute; docs/formats.md).
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/run/analysis_outputs.hpp"
+#include "pedesis/setup/config_overrides.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -40,6 +42,7 @@ inline void prepare_run_directory(const std::filesystem::path& out_dir,
         file << cfg.rdbuf();
         text = file.str();
     }
+    text = with_initial_file_anchored(text, config_path);
     write_file_atomically(out_dir / "config.toml", [&](std::ostream& out) { out << text; });
 }
 

@@ -2,7 +2,10 @@
 // What the command line adds to a config for every engine's run.
 #include "pedesis/core/communicator.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -15,6 +18,9 @@ struct RunOptions {
     // The config as run, where it is not config_path's text (--set): the run directory's
     // config.toml.
     std::optional<std::string> config_text;
+    // The --set that gave each key, by its dotted path ("run.time" -> "--set run.time=10"),
+    // for messages that say what to change.
+    std::map<std::string, std::string> set_keys;
     // The processes one soft-engine run is divided among (null: this one alone). Only
     // process 0 writes the run directory and prints; the others compute.
     Communicator* comm = nullptr;
@@ -22,5 +28,15 @@ struct RunOptions {
     // [run] device.
     std::optional<std::string> device;
 };
+
+// A --restart whose checkpoint already meets the [run] stop condition `why` ("time"):
+// which one, and where to raise it, on the command line where a --set gave it.
+inline std::string raise_stop(const RunOptions& o, const std::string& why) {
+    const auto set = o.set_keys.find("run." + why);
+    if (set == o.set_keys.end())
+        return fmt::format("stop condition ({}); raise it in [run] to continue", why);
+    return fmt::format("stop condition ({}, from {}); raise it (--set run.{}=...) to continue", why,
+                       set->second, why);
+}
 
 } // namespace pedesis

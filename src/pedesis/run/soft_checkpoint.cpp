@@ -5,6 +5,7 @@
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/io/checkpoint_file.hpp"
+#include "pedesis/run/checkpoint_engines.hpp"
 
 #include <cmath>
 
@@ -14,7 +15,6 @@ namespace pedesis {
 
 namespace {
 
-constexpr std::uint64_t soft_checkpoint_magic = 0x31544653444550ull; // "PEDSFT1"
 constexpr std::uint32_t soft_checkpoint_version = 3; // 3: the run's summed temperature
 
 // The state's arrays in checkpoint order; one list serves saving and loading.
@@ -59,6 +59,11 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
     CheckpointReader file(path);
     std::istream& in = file.in();
     try {
+        // another engine's checkpoint is told by its magic word, read ahead
+        std::uint64_t word = 0;
+        binary::get(in, word);
+        if (word != soft_checkpoint_magic) throw InputError(foreign_checkpoint(word, soft_engine));
+        in.seekg(-static_cast<std::streamoff>(sizeof word), std::ios::cur);
         binary::get_header(in, soft_checkpoint_magic, soft_checkpoint_version, D,
                            "soft-engine (brownian, langevin, nve)");
         binary::get(in, s.box);

@@ -26,14 +26,12 @@ namespace pedesis {
 
 namespace {
 
-constexpr std::uint64_t stepped_checkpoint_magic = 0x31305054535f4550ull; // "PE_STP01"
-
 template <int D>
 std::unique_ptr<SteppedEngine<D>> load_checkpoint(const std::filesystem::path& path,
                                                   const RunConfig& c, HardRunRecord<D>& s) {
     return load_hard_checkpoint<SteppedEngine<D>>(
-        path, stepped_checkpoint_magic, "not a checkpoint of a stepped run", stepped_params(c), c,
-        s, [](const SteppedEngine<D>& e) -> const ParticleStore<D>& { return e.particles(); });
+        path, stepped_checkpoint_magic, stepped_engine, stepped_params(c), c, s,
+        [](const SteppedEngine<D>& e) -> const ParticleStore<D>& { return e.particles(); });
 }
 
 // Independent speeds the rest of the run will draw, for the suggested dt: N at the
@@ -94,9 +92,9 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
         // (a fresh run always makes at least one step)
         if (const char* why = o_.restart ? stop_reason() : nullptr)
             throw InputError(fmt::format(
-                "{}: the checkpoint {} is at t = {:g} (step {}), which already meets the stop "
-                "condition ({}); raise it in [run] to continue",
-                c_.file, o_.restart->string(), engine_->time(), engine_->steps(), why));
+                "{}: the checkpoint {} is at t = {:g} (step {}), which already meets the {}",
+                c_.file, o_.restart->string(), engine_->time(), engine_->steps(),
+                raise_stop(o_, why)));
     }
 
     std::uint64_t step() const override { return engine_->steps(); }

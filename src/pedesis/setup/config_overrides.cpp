@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -70,7 +72,7 @@ struct SetArg {
     toml::table holder;     // the value, as holder["v"]
 };
 
-SetArg parse_set(const std::string& arg) {
+SetArg split_set(const std::string& arg) {
     const std::string origin = "--set " + arg;
     const auto eq = arg.find('=');
     if (eq == std::string::npos || trim(arg.substr(0, eq)).empty())
@@ -82,16 +84,48 @@ SetArg parse_set(const std::string& arg) {
     s.value_text = trim(arg.substr(eq + 1));
     if (s.value_text.find('\n') != std::string::npos)
         throw InputError(origin + ": the value must be on one line");
+    return s;
+}
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+// What a bare word that is no TOML value was meant as: the type of the key it replaces
+// (`old`, where the file has it) says; only for a string are quotes the fix.
+std::string not_a_value(const SetArg& s, const toml::node* old, const std::string& path) {
+    const std::string origin = "--set " + s.arg;
+    const std::string v = s.value_text;
+    if (lower(v) == "true" || lower(v) == "false")
+        return fmt::format("{}: '{}' is not a TOML value; TOML's booleans are lower case: "
+                           "--set {}={}",
+                           origin, v, s.key, lower(v));
+    const auto at = [&] {
+        const auto& src = old->source().begin;
+        return fmt::format("{}:{}:{}", path, src.line, src.column);
+    };
+    if (old && old->is_number())
+        return fmt::format("{}: '{}' is not a number, and '{}' takes one ({} gives a number)",
+                           origin, v, s.key, at());
+    if (old && old->is_boolean())
+        return fmt::format("{}: '{}' is neither true nor false, which '{}' takes ({} gives a "
+                           "boolean)",
+                           origin, v, s.key, at());
+    return fmt::format("{}: '{}' is not a TOML value; a string needs quotes, and the shell needs "
+                       "them kept: --set '{}=\"{}\"'",
+                       origin, v, s.key, v);
+}
+
+// The value of `s`; `old` is the key's value in the file, if any, for the message.
+void parse_value(SetArg& s, const toml::node* old, const std::string& path) {
+    const std::string origin = "--set " + s.arg;
     try {
         s.holder = toml::parse("v = " + s.value_text, std::string_view("--set"));
     } catch (const toml::parse_error& e) {
         const bool word =
             !s.value_text.empty() && s.value_text.find_first_of("\"'[]{}") == std::string::npos;
-        if (word)
-            throw InputError(fmt::format(
-                "{}: '{}' is not a TOML value; a string needs quotes, and the shell needs them "
-                "kept: --set '{}=\"{}\"'",
-                origin, s.value_text, s.key, s.value_text));
+        if (word) throw InputError(not_a_value(s, old, path));
         throw InputError(fmt::format("{}: '{}' is not a TOML value ({})", origin, s.value_text,
                                      e.description()));
     }
@@ -103,7 +137,6 @@ SetArg parse_set(const std::string& arg) {
         v << toml::toml_formatter(s.holder, toml::format_flags::none);
         s.value_text = trim(v.str().substr(v.str().find('=') + 1));
     }
-    return s;
 }
 
 } // namespace
@@ -148,9 +181,15 @@ ConfigSlot config_slot(toml::table& config, const std::string& key, const std::s
             const toml::node* name = (*list)[e].as_table()->get("name");
             if (name && name->value_or(std::string()) == pick) found = e;
         }
-        if (found == list->size() && pick.find_first_not_of("0123456789") == std::string::npos &&
-            pick.size() < 10 && std::stoul(pick) < list->size())
+        const bool index = pick.find_first_not_of("0123456789") == std::string::npos;
+        if (found == list->size() && index && pick.size() < 10 && std::stoul(pick) < list->size())
             found = std::stoul(pick);
+        if (found == list->size() && index)
+            throw InputError(fmt::format("{}: index {} of [[{}]] is out of range ({} has {} {}: "
+                                         "0..{})",
+                                         origin, pick, parts[k - 1], base, list->size(),
+                                         list->size() == 1 ? "entry" : "entries",
+                                         list->size() - 1));
         if (found == list->size())
             throw InputError(fmt::format("{}: {} has no [[{}]] named '{}' (it has: {}; or give "
                                          "an index)",
@@ -199,26 +238,40 @@ std::size_t header_line(const toml::table& t, const std::vector<std::string>& he
     return 0;
 }
 
+// Writes `text` over the value from (line, column) to (end_line, end_column), toml++'s
+// source range; a value over several lines leaves them empty, so that the lines after
+// keep their numbers.
+void replace_value(std::vector<std::string>& lines, std::size_t line, std::size_t column,
+                   std::size_t end_line, std::size_t end_column, const std::string& text) {
+    std::string& first = lines[line - 1];
+    const std::string rest =
+        lines[end_line - 1].substr(byte_of_column(lines[end_line - 1], end_column));
+    for (std::size_t l = line; l < end_line; ++l) lines[l].clear();
+    first = first.substr(0, byte_of_column(first, column)) + text;
+    if (end_line == line)
+        first += rest;
+    else
+        lines[end_line - 1] = rest;
+}
+
 } // namespace
 
 ConfigWithSets::ConfigWithSets(const std::string& path, const std::vector<std::string>& sets)
     : path_(path) {
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open config file");
-    std::stringstream buf;
-    buf << in.rdbuf();
-    const std::string file_text = buf.str();
+    const std::string file_text = read_config_file(path);
     toml::table doc = parse_toml_text(file_text, path);
     std::vector<std::string> file_lines = split(file_text, '\n');
     if (!file_lines.empty() && file_lines.back().empty()) file_lines.pop_back();
 
     TextEdits edits;
     for (const std::string& arg : sets) {
-        SetArg s = parse_set(arg);
+        SetArg s = split_set(arg);
         const std::string origin = "--set " + arg;
         sets_text_ += (sets_text_.empty() ? "" : " ") + origin;
         const ConfigSlot slot = config_slot(doc, s.key, origin, path, true);
         const toml::node* old = slot.table->get(slot.key);
+        parse_value(s, old, path);
+        set_keys_[(slot.table_path.empty() ? "" : slot.table_path + ".") + slot.key] = origin;
         if (old && (old->is_table() || old->is_array_of_tables()))
             throw InputError(fmt::format("{}: '{}' is a table of {}; set its keys one by one "
                                          "({}.KEY=VALUE)",
@@ -235,6 +288,7 @@ ConfigWithSets::ConfigWithSets(const std::string& path, const std::vector<std::s
                                              "digits, _ and -)",
                                              origin, slot.key, path));
             const TextEdits::Added line{slot.key + " = " + s.value_text, origin};
+            added_.push_back({slot.key, origin});
             const auto at_end = edits.table_at_end.find(slot.table_path);
             if (at_end != edits.table_at_end.end()) {
                 edits.tables_at_end[at_end->second].second.push_back(line);
@@ -267,16 +321,7 @@ ConfigWithSets::ConfigWithSets(const std::string& path, const std::vector<std::s
         return a.line != b.line ? a.line > b.line : a.column > b.column;
     });
     for (const TextEdits::Replace& r : edits.replaced) {
-        std::string& first = out[r.line - 1];
-        const std::string rest =
-            out[r.end_line - 1].substr(byte_of_column(out[r.end_line - 1], r.end_column));
-        // a value over several lines leaves them empty: the lines after keep their numbers
-        for (std::size_t l = r.line; l < r.end_line; ++l) out[l].clear();
-        first = first.substr(0, byte_of_column(first, r.column)) + r.text;
-        if (r.end_line == r.line)
-            first += rest;
-        else
-            out[r.end_line - 1] = rest;
+        replace_value(out, r.line, r.column, r.end_line, r.end_column, r.text);
         origin[r.line - 1].set = r.set;
         origin[r.line - 1].set_column = r.column;
     }
@@ -330,7 +375,54 @@ std::string ConfigWithSets::explain(const std::string& message) const {
             out += fmt::format("{}:{}:{}", path_, l.file_line, column);
         from = p;
     }
-    return out + message.substr(from);
+    out += message.substr(from);
+    // A key a --set added can clash with one of the file's (length and lengths, skin and
+    // pad): the message is then placed at the file's key and names the added one only by
+    // its name, so the --set that brought it is named too.
+    const auto word_at = [&](std::size_t at, std::size_t n) {
+        const auto part = [&](std::size_t k) {
+            return k < out.size() && (std::isalnum(static_cast<unsigned char>(out[k])) ||
+                                      out[k] == '_' || out[k] == '-');
+        };
+        return (at == 0 || !part(at - 1)) && !part(at + n);
+    };
+    if (out.find(mark) != std::string::npos)
+        for (const Added& a : added_) {
+            if (out.find(a.origin) != std::string::npos) continue;
+            for (std::size_t at = out.find(a.key); at != std::string::npos;
+                 at = out.find(a.key, at + 1))
+                if (word_at(at, a.key.size())) {
+                    out += fmt::format(" ({} is given by {})", a.key, a.origin);
+                    break;
+                }
+        }
+    return out;
+}
+
+std::string with_initial_file_anchored(const std::string& text,
+                                       const std::filesystem::path& config_path) {
+    toml::table doc;
+    try {
+        doc = toml::parse(text, config_path.string());
+    } catch (const toml::parse_error&) {
+        return text; // (read already: the run would have stopped at the fault)
+    }
+    const toml::node* file = doc["initial"]["file"].node();
+    if (!file || !file->is_string() || file->source().begin.line == 0) return text;
+    const std::filesystem::path p(file->value_or(std::string()));
+    if (!p.is_relative()) return text;
+    toml::table holder{
+        {"v",
+         std::filesystem::absolute(config_path.parent_path() / p).lexically_normal().string()}};
+    std::ostringstream v;
+    v << toml::toml_formatter(holder, toml::format_flags::none);
+    std::vector<std::string> lines = split(text, '\n');
+    const auto& src = file->source();
+    replace_value(lines, src.begin.line, src.begin.column, src.end.line, src.end.column,
+                  trim(v.str().substr(v.str().find('=') + 1)));
+    std::string out;
+    for (std::size_t k = 0; k < lines.size(); ++k) out += (k > 0 ? "\n" : "") + lines[k];
+    return out;
 }
 
 RunConfig ConfigWithSets::read(bool scripted) const {

@@ -7,6 +7,7 @@
 
 #include <toml++/toml.h>
 
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -48,6 +49,9 @@ class ConfigWithSets {
     std::string explain(const std::string& message) const;
     // The config, checked as load_run_config checks a file; messages through explain().
     RunConfig read(bool scripted = false) const;
+    // The --set that gave each key, by its path with entries by index ("run.time",
+    // "species.0.count"): "--set run.time=10".
+    const std::map<std::string, std::string>& set_keys() const { return set_keys_; }
 
   private:
     struct Line {
@@ -59,6 +63,18 @@ class ConfigWithSets {
     std::string text_;
     std::string sets_text_;
     std::vector<Line> lines_; // per line of text_
+    struct Added {
+        std::string key;    // its last part: "lengths"
+        std::string origin; // "--set box.lengths=[1.0]"
+    };
+    std::vector<Added> added_; // the keys the file did not have
+    std::map<std::string, std::string> set_keys_;
 };
+
+// The config's text with a relative [initial] file written as the absolute path it names
+// (relative to `config_path`), in place: the same config read from any other directory,
+// as a run directory's config.toml is. Every other byte is kept.
+std::string with_initial_file_anchored(const std::string& text,
+                                       const std::filesystem::path& config_path);
 
 } // namespace pedesis
