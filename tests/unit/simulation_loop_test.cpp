@@ -103,7 +103,7 @@ void expect_stops_at_step_25(double bad_value, const std::string& shown) {
     ScriptedEngine engine(25, bad_value, 1000);
     RunOptions o;
     o.out_dir = dir.path;
-    Simulation<2> sim(engine, every_step_log_every_ten_frames(), {{"xyz"}, {}}, o);
+    Simulation<2> sim(engine, every_step_log_every_ten_frames(), {{"xyz"}, {}, {}}, o);
     try {
         sim.run();
         FAIL() << "a " << shown << " temperature must stop the run";
@@ -139,7 +139,7 @@ TEST(SimulationLoop, ANaNFoundByTheLastRowOfCloseStopsTheRunToo) {
     o.out_dir = dir.path;
     Simulation<2> sim(engine,
                       {Trigger::every_steps(10), Trigger::every_steps(10), Trigger::never()},
-                      {{"xyz"}, {}}, o);
+                      {{"xyz"}, {}, {}}, o);
     EXPECT_EQ(sim.advance(35), nullptr);
     try {
         sim.close("script");
@@ -163,7 +163,7 @@ TEST(SimulationLoop, InfinityWhereTheCatalogueAllowsItIsAValue) {
     ScriptedEngine engine(std::numeric_limits<std::uint64_t>::max(), 0.0, 30);
     RunOptions o;
     o.out_dir = dir.path;
-    Simulation<2> sim(engine, every_step_log_every_ten_frames(), {{"xyz"}, {}}, o);
+    Simulation<2> sim(engine, every_step_log_every_ten_frames(), {{"xyz"}, {}, {}}, o);
     sim.run();
     EXPECT_EQ(engine.finished_by, "steps");
     const std::string log = read(dir.path / "log.csv");
@@ -177,7 +177,7 @@ TEST(SimulationLoop, ACaughtSignalEndsTheRunClosedAndComplete) {
     engine.raise_signal_at(37);
     RunOptions o;
     o.out_dir = dir.path;
-    Simulation<2> sim(engine, every_step_log_every_ten_frames(), {{"xyz"}, {}}, o);
+    Simulation<2> sim(engine, every_step_log_every_ten_frames(), {{"xyz"}, {}, {}}, o);
     {
         InterruptGuard guard;
         sim.run();
