@@ -4,6 +4,7 @@
 // first, so the common mistakes get the project's one-line message and exit code 2
 // without starting Python, and then passes the module's exit status on.
 #include "analyze_command.hpp"
+#include "mpi_world.hpp"
 #include "python_module.hpp"
 
 #include "pedesis/core/error.hpp"
@@ -135,8 +136,8 @@ void analyze(const Kind& kind, const AnalyzeArgs& a) {
     args.insert(args.end(), a.options.begin(), a.options.end());
     const int code = run_python_module("analyze", "analyze", args);
     if (code == 0) return;
-    // the module has printed its one-line message; a silent ParseError carries the code
-    if (code == exit_input_error) throw CLI::RuntimeError(exit_input_error);
+    // the module has printed its one-line message: only the code is left to pass on
+    if (code == exit_input_error) throw SilentExit{exit_input_error};
     throw std::runtime_error(fmt::format(
         "analyze {}: python3 -m pedesis.analyze failed with exit status {}", kind.name, code));
 }
