@@ -1,5 +1,6 @@
 #include "pedesis/run/hard_run_output.hpp"
 
+#include "pedesis/core/ball_volume.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/binary_stream.hpp"
@@ -12,7 +13,6 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <numbers>
 #include <sstream>
 
 namespace pedesis {
@@ -207,8 +207,7 @@ template <int D> std::string box_text(const Box<D>& box) {
 template <int D> double packing_fraction(const ParticleStore<D>& p, const Box<D>& box) {
     double v = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i) {
-        const double r = p.radius(i);
-        v += D == 2 ? std::numbers::pi * r * r : 4.0 / 3.0 * std::numbers::pi * r * r * r;
+        v += ball_volume(p.radius(i), D);
     }
     return v / box.volume();
 }

@@ -1,5 +1,6 @@
 #include "pedesis/setup/random_placement.hpp"
 
+#include "pedesis/core/ball_volume.hpp"
 #include "pedesis/core/rng.hpp"
 #include "pedesis/core/stage.hpp"
 #include "pedesis/spatial/cell_list.hpp"
@@ -8,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 namespace pedesis {
@@ -18,11 +18,6 @@ namespace {
 // Why random placement gave up, from what it was asked: the space each particle keeps
 // free (its diameter, or min_distance where that is larger) and the share of the
 // region those spaces cover, against the limit where random sequential addition jams.
-double ball_of(double diameter, int dim) {
-    return dim == 2 ? std::numbers::pi / 4.0 * diameter * diameter
-                    : std::numbers::pi / 6.0 * diameter * diameter * diameter;
-}
-
 template <int D>
 std::string crowded_message(const PlacementRequest<D>& req, std::size_t k, std::size_t total,
                             int attempts) {
@@ -39,13 +34,13 @@ std::string crowded_message(const PlacementRequest<D>& req, std::size_t k, std::
                     req.what, k + 1, req.count, attempts);
     // the particles themselves do not fit: no placement and no min_distance helps
     const double body = 2.0 * (req.body_radius >= 0.0 ? req.body_radius : req.radius);
-    const double filled = n * ball_of(body, D) / region;
+    const double filled = n * ball_volume(0.5 * body, D) / region;
     if (filled > close_packing)
         return fmt::format("{}: the particles themselves, {}s of diameter {:g} (twice the "
                            "species' radius), would fill {:.3g} of the region, more than close "
                            "packing ({}) allows; give a larger box or fewer particles",
                            head, ball, body, filled, close_packing);
-    const double covered = n * ball_of(keep, D) / region;
+    const double covered = n * ball_volume(0.5 * keep, D) / region;
     const double jams = D == 2 ? 0.547 : 0.38; // random sequential addition's limit
     const bool min_distance_binds = req.min_distance > 2.0 * req.radius;
     std::string m = fmt::format(

@@ -1,5 +1,6 @@
 #include "pedesis/setup/run_config.hpp"
 
+#include "pedesis/core/ball_volume.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/machine_memory.hpp"
 #include "pedesis/core/stage.hpp"
@@ -16,7 +17,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <set>
 
 namespace pedesis {
@@ -403,10 +403,7 @@ void check_particle_budget(const RunConfig& c) {
         if (!s.count) continue;
         n += *s.count;
         where = s.count_where;
-        const double r = s.radius;
-        filled += static_cast<double>(*s.count) * (c.dimension == 2
-                                                       ? std::numbers::pi * r * r
-                                                       : 4.0 / 3.0 * std::numbers::pi * r * r * r);
+        filled += static_cast<double>(*s.count) * ball_volume(s.radius, c.dimension);
     }
     if (n == 0) return;
     if (n > 0xffffffffull)

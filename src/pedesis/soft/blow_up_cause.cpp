@@ -1,10 +1,11 @@
 #include "pedesis/soft/blow_up_cause.hpp"
 
+#include "pedesis/core/ball_volume.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace pedesis {
 
@@ -13,11 +14,6 @@ namespace {
 // A start whose pairs overlap blows up in its first steps; later the start is not the
 // cause any more.
 constexpr std::uint64_t start_steps = 10;
-
-double ball(double diameter, int dim) {
-    return dim == 2 ? std::numbers::pi / 4.0 * diameter * diameter
-                    : std::numbers::pi / 6.0 * diameter * diameter * diameter;
-}
 
 } // namespace
 
@@ -58,7 +54,7 @@ StartFacts measure_start(const SoftState<D>& s, const NeighborList<D>& list,
     for (std::size_t i = 0; i < s.size(); ++i) count[s.p.species[i]] += 1.0;
     std::size_t most = 0;
     for (std::size_t a = 0; a < n; ++a) {
-        f.packing += count[a] * ball(core[a * n + a], D) / s.box.volume();
+        f.packing += count[a] * ball_volume(0.5 * core[a * n + a], D) / s.box.volume();
         if (count[a] > count[most]) most = a;
     }
     if (n > 0 && !forces.empty()) {
