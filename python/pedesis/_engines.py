@@ -22,7 +22,7 @@ def _plugin_class(entry):
     `pedesis run` reads configs with) stays the single list of terms and parameters."""
     cls_name = entry["python_class"]
     keys = [p["key"] for p in entry["params"]]
-    options = [f["key"] for f in entry["flags"]]
+    options = [f["key"] for f in entry["flags"]] + [c["key"] for c in entry["choices"]]
     if entry["pair_potential"]:
         options += ["pairs", "mixing"]
 

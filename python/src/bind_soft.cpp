@@ -68,6 +68,18 @@ PluginParam python_param(const py::handle& value, const std::string& where) {
         }
         return p;
     }
+    if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+        for (const auto& v : value) {
+            try {
+                p.components.push_back(v.cast<double>());
+            } catch (const py::cast_error&) {
+                throw InputError(where + ": a list of numbers (one per axis), got " +
+                                 py::repr(value).cast<std::string>());
+            }
+        }
+        if (p.components.empty()) throw InputError(where + ": give one number per axis");
+        return p;
+    }
     try {
         p.uniform = value.cast<double>();
     } catch (const py::cast_error&) {
@@ -333,12 +345,15 @@ against the engine's catalogue: unknown, missing or out-of-range ones raise Inpu
                  std::map<std::string, bool> flags;
                  std::vector<PairValues> pairs;
                  std::string mixing = "geometric";
+                 std::map<std::string, std::string> choices;
                  for (const auto& [k, v] : params) {
                      const auto key = k.cast<std::string>();
                      if (key == "pairs")
                          pairs = python_pairs(v, label + ": pairs");
                      else if (key == "mixing")
                          mixing = v.cast<std::string>();
+                     else if (py::isinstance<py::str>(v))
+                         choices[key] = v.cast<std::string>();
                      else if (py::isinstance<py::bool_>(v))
                          flags[key] = v.cast<bool>();
                      else
@@ -346,7 +361,8 @@ against the engine's catalogue: unknown, missing or out-of-range ones raise Inpu
                  }
                  auto p = std::make_unique<PyPlugin>();
                  p->spec = make_plugin_spec(kind_of(kind), name, std::move(given), label,
-                                            std::move(flags), std::move(pairs), mixing);
+                                            std::move(flags), std::move(pairs), mixing,
+                                            std::move(choices));
                  p->label = label;
                  return p;
              }),
@@ -436,15 +452,24 @@ blow-up) or to NaN raises RunError naming the particle.
         for (const auto& p : info.params)
             params.append(py::dict(py::arg("key") = p.key, py::arg("required") = p.required,
                                    py::arg("per_species") = p.per_species,
+                                   py::arg("per_axis") = p.per_axis,
                                    py::arg("meaning") = p.meaning));
         py::list flags;
         for (const auto& f : info.flags)
             flags.append(py::dict(py::arg("key") = f.key, py::arg("meaning") = f.meaning));
-        catalogue.append(
-            py::dict(py::arg("kind") = kind_name(info.kind), py::arg("name") = info.name,
-                     py::arg("python_class") = info.python_class, py::arg("params") = params,
-                     py::arg("flags") = flags, py::arg("pair_potential") = info.pair_potential,
-                     py::arg("formula") = info.formula));
+        py::list choices;
+        for (const auto& c : info.choices) {
+            py::list options;
+            for (const char* o : c.options) options.append(o);
+            choices.append(py::dict(py::arg("key") = c.key, py::arg("options") = options,
+                                    py::arg("default") = c.fallback,
+                                    py::arg("meaning") = c.meaning));
+        }
+        catalogue.append(py::dict(
+            py::arg("kind") = kind_name(info.kind), py::arg("name") = info.name,
+            py::arg("python_class") = info.python_class, py::arg("params") = params,
+            py::arg("flags") = flags, py::arg("choices") = choices,
+            py::arg("pair_potential") = info.pair_potential, py::arg("formula") = info.formula));
     }
     m.attr("_catalogue") = catalogue;
 }

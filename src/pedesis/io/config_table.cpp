@@ -56,6 +56,12 @@ bool ConfigTable::is_table(const std::string& key) const {
     return n && n->is_table();
 }
 
+std::optional<std::size_t> ConfigTable::list_size(const std::string& key) const {
+    const toml::node* n = table_->get(key);
+    if (!n || !n->is_array()) return std::nullopt;
+    return n->as_array()->size();
+}
+
 std::vector<std::string> ConfigTable::keys() const {
     std::vector<std::string> out;
     for (const auto& [k, v] : *table_) out.emplace_back(k.str());

@@ -20,6 +20,8 @@ class ConfigTable {
 
     bool has(const std::string& key) const;
     bool is_table(const std::string& key) const;
+    // The length of the list at `key`, or nothing if the value is not a list.
+    std::optional<std::size_t> list_size(const std::string& key) const;
     std::vector<std::string> keys() const; // every key of the table, in file order
 
     std::optional<double> number(const std::string& key, bool allow_inf = false);

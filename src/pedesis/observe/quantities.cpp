@@ -26,7 +26,27 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
          "kinetic temperature 2 K / f, f the degrees of freedom (less the conserved momentum)",
          inertial},
         {"temperature_<species>", "energy", "kinetic temperature of one species", hard},
-        {"potential_energy", "energy", "potential energy of the pair forces", soft},
+        {"potential_energy", "energy",
+         "potential energy of the pair forces, walls and external fields", soft},
+        {"gravity_energy", "energy",
+         "potential energy in the gravity force: sum of the weight times the height above the "
+         "box's centre",
+         soft},
+        {"trap_energy", "energy", "potential energy in the harmonic traps", soft},
+        {"wall_pressure_x", "energy / volume",
+         "force per area the particles exert on the two walls normal to x (their mean), at the "
+         "instant",
+         "soft"},
+        {"wall_pressure_y", "energy / volume", "the same on the walls normal to y", soft},
+        {"wall_pressure_z", "energy / volume", "the same on the walls normal to z (3D)", soft},
+        {"wall_pressure_sphere", "energy / volume",
+         "outward force per area the particles exert on a spherical (2D: circular) container, "
+         "at the instant",
+         soft},
+        {"wall_pressure_cylinder", "energy / volume",
+         "outward force per area the particles exert on a cylindrical container's side, at the "
+         "instant",
+         soft},
         {"total_energy", "energy",
          "potential plus kinetic energy: constant in NVE up to the integrator's error",
          "langevin, nve"},
@@ -58,7 +78,9 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
         {"msd", "length^2", "mean squared displacement since step 0 (unwrapped)", soft},
         {"pressure_virial", "energy / volume", "pair virial sum r_ij . F_ij / (d V)", soft},
         {"pressure_active", "energy / volume",
-         "swim pressure of the self-propulsion forces, sum alpha n_i . dr_i / (d V)", soft},
+         "swim pressure of the active forces, sum F_active,i . dr_i / (d V) (self_propulsion: "
+         "F_active = alpha n_i)",
+         soft},
         {"pressure_xx", "energy / volume",
          "pressure tensor, diagonal component along x, from the same parts as pressure "
          "(the mean of the diagonal components is pressure)",

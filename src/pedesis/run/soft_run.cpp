@@ -27,6 +27,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <sstream>
 
 namespace pedesis {
@@ -195,6 +196,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         if (inertial()) c.insert(c.end(), {"kinetic_energy", "temperature", "total_energy"});
         c.insert(c.end(), {"pressure", "pressure_ideal", "pressure_virial", "pressure_active"});
         for (int slot : sym_slots<D>()) c.push_back(std::string("pressure_") + sym_suffix(slot));
+        for (const auto& f : evolver_->forces())
+            for (std::string& name : f->log_columns(state_)) c.push_back(std::move(name));
         c.push_back("list_rebuilds");
         return c;
     }
@@ -214,6 +217,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         for (int slot : sym_slots<D>())
             values.push_back(m.ideal_tensor[slot] + pair.virial_tensor[slot] / V +
                              m.active_tensor[slot]);
+        add_term_values(values);
         values.push_back(static_cast<double>(evolver_->list_builds()));
         if (state_.step > 0) {
             ++book_.samples;
@@ -398,6 +402,14 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         SymTensor ideal_tensor{}, active_tensor{};
     };
 
+    // The forces' own columns (ForceTerm::log_values): sums over each process's particles.
+    void add_term_values(std::vector<double>& values) {
+        term_values_.clear();
+        for (const auto& f : evolver_->forces()) f->log_values(state_, term_values_);
+        if (domain_) o_.comm->sum(std::span<double>(term_values_));
+        values.insert(values.end(), term_values_.begin(), term_values_.end());
+    }
+
     // The active force along the director of each species (for the swim pressure's sums).
     void read_swim_forces() {
         const std::size_t species = state_.p.species_table.size();
@@ -571,6 +583,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     std::array<bool, D> conserved_{};
     std::vector<double> species_count_; // of the whole system
     std::vector<double> swim_alpha_;
+    std::vector<double> term_values_; // add_term_values' scratch
     struct {
         double seconds = 0.0, communication_seconds = 0.0, bytes_sent = 0.0;
     } stepping_; // by this invocation

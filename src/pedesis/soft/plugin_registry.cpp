@@ -6,6 +6,7 @@
 #include "pedesis/soft/langevin.hpp"
 #include "pedesis/soft/pair_force.hpp"
 #include "pedesis/soft/pair_potentials.hpp"
+#include "pedesis/soft/plugin_rows.hpp"
 #include "pedesis/soft/polar_align.hpp"
 #include "pedesis/soft/self_propulsion.hpp"
 #include "pedesis/soft/velocity_verlet.hpp"
@@ -13,25 +14,13 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 namespace pedesis {
 
 namespace {
 
-constexpr bool required = true, optional = false;
-constexpr bool per_species = true, shared = false;
-constexpr bool length = true;
-
-// Both dimensions' builders of a row, from one template lambda
-// []<int D>(Evolver<D>&, const PluginSpec&, const std::vector<Species>&, std::uint64_t).
-template <class F> std::pair<AddPlugin<2>, AddPlugin<3>> builders(F f) {
-    return {static_cast<AddPlugin<2>>(f), static_cast<AddPlugin<3>>(f)};
-}
-
-double uniform(const PluginSpec& spec, const std::string& key, double fallback) {
-    const auto it = spec.params.find(key);
-    return it == spec.params.end() ? fallback : *it->second.uniform;
-}
+using namespace rows;
 
 // A pair force with one evaluator per species pair; make(value) builds the evaluator of
 // one pair from value(key, fallback), that pair's parameter.
@@ -48,11 +37,6 @@ void add_pair_force(Evolver<D>& e, const PluginSpec& spec, const std::vector<Spe
     e.add_force(std::make_unique<PairForce<D, Pair>>(spec.name, std::move(table), n));
 }
 
-bool flag(const PluginSpec& spec, const char* key) {
-    const auto it = spec.flags.find(key);
-    return it != spec.flags.end() && it->second;
-}
-
 constexpr const char* uniform_noise_doc =
     "draw the noise uniform on [-sqrt 3, sqrt 3] (mean 0, variance 1, as LAMMPS' fix "
     "langevin and fix brownian's default) instead of Gaussian: the same diffusion and "
@@ -62,16 +46,9 @@ detail::NoiseShape noise_shape(const PluginSpec& spec) {
     return flag(spec, "uniform_noise") ? detail::NoiseShape::uniform : detail::NoiseShape::gaussian;
 }
 
-PluginInfo row(PluginInfo info, std::pair<AddPlugin<2>, AddPlugin<3>> add) {
-    info.add2 = add.first;
-    info.add3 = add.second;
-    return info;
-}
-
-} // namespace
-
-const std::vector<PluginInfo>& plugin_catalogue() {
-    static const std::vector<PluginInfo> catalogue = {
+// The pair potentials, the ABP tutorial's terms and the integrators.
+std::vector<PluginInfo> core_rows() {
+    return {
         row({PluginKind::force,
              "harmonic",
              "HarmonicForce",
@@ -197,6 +174,17 @@ const std::vector<PluginInfo>& plugin_catalogue() {
                 e.add_integrator(std::make_unique<VelocityVerletIntegrator<D>>());
             })),
     };
+}
+
+} // namespace
+
+const std::vector<PluginInfo>& plugin_catalogue() {
+    static const std::vector<PluginInfo> catalogue = [] {
+        std::vector<PluginInfo> all = core_rows();
+        for (auto more : {active_model_rows, external_field_rows, wall_rows})
+            for (PluginInfo& info : more()) all.push_back(std::move(info));
+        return all;
+    }();
     return catalogue;
 }
 
@@ -281,6 +269,21 @@ void check_pair_options(const PluginSpec& spec, const PluginInfo& info) {
     }
 }
 
+const ChoiceInfo* choice_info(const PluginInfo& info, const std::string& key) {
+    for (const ChoiceInfo& c : info.choices)
+        if (key == c.key) return &c;
+    return nullptr;
+}
+
+void check_choice(const ChoiceInfo& c, const std::string& word, const std::string& where) {
+    std::string known;
+    for (const char* option : c.options) {
+        if (word == option) return;
+        known += std::string(known.empty() ? "" : ", ") + option;
+    }
+    throw InputError(where + ": '" + word + "' is not one of " + known + " (" + c.meaning + ")");
+}
+
 PairValues read_pair_values(ConfigTable& t, const PluginInfo& info) {
     PairValues pv;
     pv.where = t.where("species");
@@ -300,7 +303,7 @@ PairValues read_pair_values(ConfigTable& t, const PluginInfo& info) {
 PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
                             std::map<std::string, PluginParam> given, const std::string& where,
                             std::map<std::string, bool> flags, std::vector<PairValues> pairs,
-                            const std::string& mixing) {
+                            const std::string& mixing, std::map<std::string, std::string> choices) {
     PluginSpec spec;
     spec.kind = kind;
     spec.name = name;
@@ -315,9 +318,12 @@ PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
         PluginParam& value = it->second;
         if (!value.by_species.empty() && !p.per_species)
             throw InputError(value.where + ": is one number for all species");
-        if (!value.uniform && value.by_species.empty())
+        if (!value.components.empty() && !p.per_axis)
+            throw InputError(value.where + ": is one number, not a list");
+        if (!value.uniform && value.by_species.empty() && value.components.empty())
             throw InputError(value.where + ": names no species");
         if (value.uniform) check_limit(*value.uniform, p.limit, value.where);
+        for (double v : value.components) check_limit(v, p.limit, value.where);
         for (const auto& [species, v] : value.by_species)
             check_limit(v, p.limit, value.where + " (species '" + species + "')");
         spec.params[p.key] = value;
@@ -339,6 +345,16 @@ PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
             throw InputError(where + ": " + kind_name(kind) + " '" + name + "' has no option '" +
                              key + "'");
         spec.flags[key] = on;
+    }
+    for (auto& [key, word] : choices) {
+        const ChoiceInfo* choice = choice_info(info, key);
+        if (!choice && param_info(info, key))
+            throw InputError(where + ": " + key + ": must be a number, got '" + word + "'");
+        if (!choice)
+            throw InputError(where + ": " + kind_name(kind) + " '" + name + "' has no option '" +
+                             key + "'");
+        check_choice(*choice, word, where + ": " + key);
+        spec.choices[key] = word;
     }
     if (!info.pair_potential && (!pairs.empty() || mixing != "geometric"))
         throw InputError(where + ": " + name + " is not a pair potential: no pairs or mixing");
@@ -374,6 +390,11 @@ PluginSpec read_plugin(ConfigTable& t, PluginKind kind) {
                 value.by_species.emplace_back(species, v);
             }
             if (value.by_species.empty()) throw InputError(value.where + ": names no species");
+        } else if (const auto size = t.list_size(p.key); size && p.per_axis) {
+            value.components = *t.numbers(p.key, *size);
+            if (value.components.empty())
+                throw InputError(value.where + ": give one number per axis");
+            for (double v : value.components) check_limit(v, p.limit, value.where);
         } else {
             const double v = *t.number(p.key);
             check_limit(v, p.limit, value.where);
@@ -383,6 +404,12 @@ PluginSpec read_plugin(ConfigTable& t, PluginKind kind) {
     }
     for (const FlagInfo& f : info.flags)
         if (t.has(f.key)) spec.flags[f.key] = *t.boolean(f.key);
+    for (const ChoiceInfo& c : info.choices)
+        if (t.has(c.key)) {
+            const std::string word = *t.string(c.key);
+            check_choice(c, word, t.where(c.key));
+            spec.choices[c.key] = word;
+        }
     if (info.pair_potential) {
         if (t.has("mixing")) spec.mixing = *t.string("mixing");
         for (ConfigTable& pair : t.tables("pairs"))
@@ -397,6 +424,8 @@ PerSpecies plugin_parameter(const PluginSpec& spec, const std::string& key,
                             const std::vector<Species>& species) {
     const PluginParam& p = spec.params.at(key);
     if (p.uniform) return PerSpecies(*p.uniform);
+    if (!p.components.empty())
+        throw InputError(p.where + ": a list per axis here is not read by " + spec.name);
     std::vector<double> v;
     for (const auto& s : species) {
         const auto it = std::find_if(p.by_species.begin(), p.by_species.end(),
@@ -412,6 +441,37 @@ PerSpecies plugin_parameter(const PluginSpec& spec, const std::string& key,
             throw InputError(p.where + ": there is no species '" + name + "'");
     }
     return PerSpecies(std::move(v));
+}
+
+std::string plugin_choice(const PluginSpec& spec, const std::string& key) {
+    if (const auto it = spec.choices.find(key); it != spec.choices.end()) return it->second;
+    const ChoiceInfo* c = choice_info(plugin_info(spec.kind, spec.name, spec.where), key);
+    if (!c) throw std::logic_error(spec.name + " has no choice '" + key + "'");
+    return c->fallback;
+}
+
+std::vector<double> plugin_axes(const PluginSpec& spec, const std::string& key, int dimension,
+                                double fallback) {
+    const auto it = spec.params.find(key);
+    if (it == spec.params.end()) return std::vector<double>(dimension, fallback);
+    const PluginParam& p = it->second;
+    if (!p.components.empty()) {
+        if (p.components.size() != static_cast<std::size_t>(dimension))
+            throw InputError(p.where + ": gives " + std::to_string(p.components.size()) +
+                             " numbers for a " + std::to_string(dimension) +
+                             "D box: give one per axis, or one for all");
+        return p.components;
+    }
+    if (!p.uniform) throw InputError(p.where + ": is one number for all species");
+    return std::vector<double>(dimension, *p.uniform);
+}
+
+int axis_index(const std::string& name, int dimension, const std::string& where) {
+    static constexpr const char* names[] = {"x", "y", "z"};
+    for (int a = 0; a < dimension; ++a)
+        if (name == names[a]) return a;
+    throw InputError(where + ": a " + std::to_string(dimension) + "D box has no axis '" + name +
+                     "'");
 }
 
 double pair_parameter(const PluginSpec& spec, const std::string& key,

@@ -28,11 +28,23 @@ struct ParamInfo {
     // A pair potential mixes per-species values into pair values: lengths by the
     // mixing rule (arithmetic or geometric mean), everything else geometrically.
     bool length = false;
+    // May be a list of one number per axis instead (a trap's centre, its stiffness per
+    // axis): read with plugin_axes.
+    bool per_axis = false;
 };
 
 // A yes/no option (lj's shift).
 struct FlagInfo {
     const char* key;
+    const char* meaning;
+};
+
+// A word among fixed options (a wall's potential, an axis), with the one taken when the
+// config gives none.
+struct ChoiceInfo {
+    const char* key;
+    std::vector<const char*> options;
+    const char* fallback;
     const char* meaning;
 };
 
@@ -49,6 +61,7 @@ struct PluginInfo {
     // Pair potentials take per-pair values ([[force.pairs]]) and a mixing rule.
     bool pair_potential = false;
     std::vector<FlagInfo> flags = {};
+    std::vector<ChoiceInfo> choices = {};
     AddPlugin<2> add2 = nullptr; // builds the plug-in and registers it with the evolver
     AddPlugin<3> add3 = nullptr;
 };
@@ -72,11 +85,25 @@ PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
                             std::map<std::string, PluginParam> given, const std::string& where,
                             std::map<std::string, bool> flags = {},
                             std::vector<PairValues> pairs = {},
-                            const std::string& mixing = "geometric");
+                            const std::string& mixing = "geometric",
+                            std::map<std::string, std::string> choices = {});
 
 // The value of parameter `key` for every species of the table, in table order.
 PerSpecies plugin_parameter(const PluginSpec& spec, const std::string& key,
                             const std::vector<Species>& species);
+
+// The word the spec gives for choice `key`, or the choice's fallback.
+std::string plugin_choice(const PluginSpec& spec, const std::string& key);
+
+// Parameter `key` (ParamInfo::per_axis) as one number per axis of a `dimension`-D box: a
+// list of that length, or one number for every axis; `fallback` on every axis if the
+// spec has none. Not per species.
+std::vector<double> plugin_axes(const PluginSpec& spec, const std::string& key, int dimension,
+                                double fallback);
+
+// "x", "y", "z" as an axis index (ChoiceInfo options of an axis); InputError naming
+// `where` for an axis the box does not have.
+int axis_index(const std::string& name, int dimension, const std::string& where);
 
 // The value of a pair potential's parameter `key` for the species pair (a, b): the
 // [[force.pairs]] entry of that pair, else the mixing rule over per-species values, else

@@ -15,7 +15,8 @@ enum class PluginKind { force, torque, integrator };
 struct PluginParam {
     std::optional<double> uniform;                          // one value for every species
     std::vector<std::pair<std::string, double>> by_species; // or one per species name
-    std::string where;                                      // file:line:column: key '...'
+    std::vector<double> components; // or one per axis (a trap's centre), when the key allows
+    std::string where;              // file:line:column: key '...'
 };
 
 // The values a pair potential's config gives one pair of species ([[force.pairs]]).
@@ -29,10 +30,11 @@ struct PluginSpec {
     PluginKind kind = PluginKind::force;
     std::string name;
     std::string where; // of the table, for messages about the plug-in as a whole
-    std::map<std::string, PluginParam> params; // only the keys the config gave
-    std::map<std::string, bool> flags;         // likewise
-    std::vector<PairValues> pairs;             // pair potentials only
-    std::string mixing = "geometric";          // pair potentials only
+    std::map<std::string, PluginParam> params;  // only the keys the config gave
+    std::map<std::string, bool> flags;          // likewise
+    std::map<std::string, std::string> choices; // likewise (a wall's potential, an axis)
+    std::vector<PairValues> pairs;              // pair potentials only
+    std::string mixing = "geometric";           // pair potentials only
 };
 
 } // namespace pedesis

@@ -51,6 +51,14 @@ template <int D> class ForceTerm {
     // pressure: 0 for a passive term. (A run shared among processes sums the swim
     // pressure from it, soft_observables.hpp.)
     virtual double swim_force(std::size_t /*s*/, std::size_t /*count*/) const { return 0.0; }
+
+    // Log columns of the term's own (a wall's pressure, a field's energy), by their names
+    // in the quantity catalogue (observe/quantities.hpp), and their values at the current
+    // state, appended to `out` in that order. Each value must be a sum over the owned
+    // particles (i < s.owned()), divided by a constant if need be: a run shared among
+    // processes adds the processes' values up.
+    virtual std::vector<std::string> log_columns(const SoftState<D>&) const { return {}; }
+    virtual void log_values(const SoftState<D>&, std::vector<double>& /*out*/) const {}
 };
 
 template <int D> class TorqueTerm {
