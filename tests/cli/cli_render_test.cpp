@@ -1,7 +1,8 @@
 // `pedesis render` through the real binary: a small event run drawn to PNG frames of the
 // requested size (the pixel at every particle's centre has its species' colour, the
 // background does not), to an MP4 and a GIF that ffprobe counts frame by frame, a soft
-// run's GSD with directors, and bad input: missing or corrupt run directories, no ffmpeg,
+// run's GSD with directors, the containers, traps and gravity of the run's config, and bad
+// input: missing or corrupt run directories, no ffmpeg,
 // an ffmpeg that fails (no movie may be left under its name), and bad options.
 #include "cli/cli_support.hpp"
 
@@ -267,6 +268,69 @@ TEST_F(Render, HugeRadiusDrawsInsteadOfHanging) {
     const auto r = run_pedesis("render huge --out frames/ --size 64x64", dir, 30);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_TRUE(fs::exists(dir / "frames" / "frame_000000.png")) << r.output;
+}
+
+// A run directory's config.toml with a circular container, a trap and gravity: the PNG
+// shows the container's wall line, the trap's marker and the arrow where the same run
+// without those forces is background. A config whose scenery values are nonsense renders
+// as if it had none.
+TEST_F(Render, ContainerTrapAndGravityFromTheConfigAreDrawn) {
+    fs::create_directories(dir / "scene");
+    write("scene/trajectory.xyz",
+          "1\nLattice=\"20 0 0 0 20 0 0 0 1\" Origin=\"-10 -10 -0.5\" "
+          "Properties=species:S:1:pos:R:3:radius:R:1 Time=0 pbc=\"F F F\"\nA 0 0 0 0.5\n");
+    const std::string plain = "dimension = 2\n[box]\nlength = 20.0\nboundary = \"wall\"\n";
+    auto render_with = [&](const std::string& config) {
+        write("scene/config.toml", config);
+        const auto r = run_pedesis("render scene --out frames/ --size 400x400", dir, 30);
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        return read_png(dir / "frames" / "frame_000000.png");
+    };
+    const Image without = render_with(plain);
+    const Image with = render_with(plain + R"([[force]]
+name = "wall"
+potential = "wca"
+shape = "sphere"
+radius = 8.0
+centre = [1.0, 0.0]
+[[force]]
+name = "harmonic_trap"
+k = 1.0
+centre = [-3.0, 4.0]
+[[force]]
+name = "gravity"
+force = 1.0
+)");
+    const Image nonsense = render_with(plain + R"([[force]]
+name = "wall"
+shape = "sphere"
+radius = -8.0
+[[force]]
+name = "harmonic_trap"
+k = "stiff"
+[[force]]
+name = "gravity"
+force = nan
+)");
+    const auto run = render::open_run_directory(dir / "scene", render::SourceKind::automatic);
+    const render::Layout L = render::make_layout(400, 400, run.source->frame(0), false);
+    const auto dark = [](const std::array<int, 3>& p) { return p[0] + p[1] + p[2] < 3 * 80; };
+    const std::array<int, 3> white{255, 255, 255};
+    // the container's wall line, just outside its radius, on its left and right
+    const auto [cx, cy] = L.to_canvas(1.0, 0.0);
+    const double ring = 8.0 * L.scale + 0.5 * L.wall;
+    // the trap's centre, and the gravity arrow in the box's top right corner
+    const auto [tx, ty] = L.to_canvas(-3.0, 4.0);
+    const std::vector<std::array<double, 2>> marks = {
+        {cx - ring, cy},
+        {cx + ring, cy},
+        {tx, ty},
+        {L.left + L.box_w - 1.6 * L.font, L.top + 1.6 * L.font}};
+    for (const auto& [x, y] : marks) {
+        EXPECT_TRUE(dark(with.at(x, y))) << x << "," << y;
+        EXPECT_TRUE(close(without.at(x, y), white)) << x << "," << y;
+    }
+    EXPECT_EQ(nonsense.pixels, without.pixels);
 }
 
 TEST_F(Render, MissingOrCorruptRunDirectoriesExitWith2) {

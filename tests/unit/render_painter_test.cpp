@@ -1,7 +1,8 @@
 // Painting one frame: the pixel at each particle's centre carries the particle's colour
 // (by species, speed or polarity angle), the background does not, periodic images and
 // walls show where they should, 3D frames put the nearest particle on top, and a slab
-// hides what lies outside it. Also the PNG written, read back through Cairo.
+// hides what lies outside it; a run's containers, traps and gravity show where they are.
+// Also the PNG written, read back through Cairo.
 #include "pedesis/core/error.hpp"
 #include "pedesis/render/canvas.hpp"
 #include "pedesis/render/colormap.hpp"
@@ -16,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <numbers>
+#include <tuple>
 #include <unistd.h>
 
 using namespace pedesis;
@@ -61,10 +63,11 @@ Frame sample_frame() {
 
 class Painted {
   public:
-    Painted(const Frame& f, const Style& style, int width = 400, int height = 240)
+    Painted(const Frame& f, const Style& style, int width = 400, int height = 240,
+            const Scenery& scenery = {})
         : canvas(width, height),
           layout(make_layout(width, height, f, style.colour != ColourBy::species)) {
-        paint_frame(canvas, layout, f, style, 0);
+        paint_frame(canvas, layout, f, style, 0, scenery);
         canvas.rgb_bytes(rgb);
     }
     Pixel at_canvas(double x, double y) const {
@@ -211,6 +214,144 @@ TEST(RenderPainter, ThreeDimensionsDrawTheNearestOnTopAndSlabsHideTheRest) {
     EXPECT_LT(distance(low, species_colour(0)), distance(low, species_colour(1))) << low;
     slab.slab = Slab{2.0, 4.0};
     EXPECT_TRUE(close(Painted(f, slab).at(0, 0), white));
+}
+
+// Dark enough to be ink (the scenery's lines), not a particle's fill nor the background.
+bool dark(const Pixel& p) {
+    return p.r + p.g + p.b < 3 * 80;
+}
+
+// Particles only far from where the scenery goes: the pixels tested are the scenery's.
+Frame open_box_2d() {
+    Frame f;
+    f.dimension = 2;
+    f.box_lo = {-10.0, -10.0, 0.0};
+    f.box_length = {20.0, 20.0, 0.0};
+    f.species_names = {"A"};
+    f.position = {{-8.5, -8.5, 0}};
+    f.radius = {0.5};
+    f.species = {0};
+    return f;
+}
+
+TEST(RenderScenery, ContainerTrapAndGravityAreDrawnWhereTheyAre) {
+    const Frame f = open_box_2d();
+    Scenery scenery;
+    scenery.containers.push_back({ContainerShape::sphere, 6.0, {1.0, -1.0, 0.0}, 2});
+    scenery.traps.push_back({-4.0, 3.0, 0.0});
+    scenery.pulls.push_back({0.0, -1.0, 0.0});
+    Canvas with_canvas(800, 800), without_canvas(800, 800);
+    const Layout L = make_layout(800, 800, f, false);
+    paint_frame(with_canvas, L, f, Style{}, 0, scenery);
+    paint_frame(without_canvas, L, f, Style{}, 0);
+    std::vector<std::uint8_t> with, without;
+    with_canvas.rgb_bytes(with);
+    without_canvas.rgb_bytes(without);
+    auto at = [&](const std::vector<std::uint8_t>& rgb, double x, double y) {
+        const std::size_t i = 3 * (static_cast<std::size_t>(y) * 800 + static_cast<std::size_t>(x));
+        return Pixel{rgb[i], rgb[i + 1], rgb[i + 2]};
+    };
+
+    // The container: a wall line just outside its radius, all round; inside and outside it
+    // the background.
+    const auto [cx, cy] = L.to_canvas(1.0, -1.0);
+    const double ring = 6.0 * L.scale + 0.5 * L.wall;
+    for (double angle = 0.1; angle < 6.2; angle += 0.7) {
+        const double x = cx + ring * std::cos(angle), y = cy + ring * std::sin(angle);
+        EXPECT_TRUE(dark(at(with, x, y))) << angle << ": " << at(with, x, y);
+        EXPECT_TRUE(close(at(without, x, y), white)) << angle;
+        for (double off : {-3.0 * L.wall, 3.0 * L.wall}) {
+            const double xo = cx + (ring + off) * std::cos(angle);
+            const double yo = cy + (ring + off) * std::sin(angle);
+            EXPECT_TRUE(close(at(with, xo, yo), white)) << angle << " " << off;
+        }
+    }
+
+    // The trap: a cross through its centre, nothing a few font sizes away.
+    const auto [tx, ty] = L.to_canvas(-4.0, 3.0);
+    for (const auto& [dx, dy] : std::vector<std::array<double, 2>>{{0, 0}, {0.6, 0}, {0, -0.6}})
+        EXPECT_TRUE(dark(at(with, tx + dx * L.font, ty + dy * L.font))) << dx << "," << dy;
+    EXPECT_TRUE(close(at(without, tx, ty), white));
+    EXPECT_TRUE(close(at(with, tx + 2.0 * L.font, ty + 2.0 * L.font), white));
+
+    // Gravity along -y: an arrow in the top right corner of the box, its head down.
+    const double gx = L.left + L.box_w - 1.6 * L.font, gy = L.top + 1.6 * L.font;
+    EXPECT_TRUE(dark(at(with, gx, gy)));
+    EXPECT_TRUE(dark(at(with, gx + 0.15 * L.font, gy + 0.5 * L.font)));  // the head, wide
+    EXPECT_FALSE(dark(at(with, gx + 0.15 * L.font, gy - 0.5 * L.font))); // the tail, thin
+    EXPECT_TRUE(close(at(without, gx, gy), white));
+}
+
+TEST(RenderScenery, GravityAlongXPointsAlongXAndAlongZIsSeenEndOn) {
+    const Frame f = open_box_2d();
+    for (const Vec3& pull : std::vector<Vec3>{{1, 0, 0}, {-1, 0, 0}, {0, 0, -1}, {0, 0, 1}}) {
+        Scenery scenery;
+        scenery.pulls.push_back(pull);
+        const Painted p(f, Style{}, 800, 800, scenery);
+        const double font = p.layout.font;
+        const double gx = p.layout.left + p.layout.box_w - 1.6 * font;
+        const double gy = p.layout.top + 1.6 * font;
+        if (pull[2] == 0.0) {
+            // the head lies on the side the pull points to
+            const double s = pull[0];
+            EXPECT_TRUE(dark(p.at_canvas(gx + s * 0.5 * font, gy + 0.15 * font))) << pull[0];
+            EXPECT_FALSE(dark(p.at_canvas(gx - s * 0.5 * font, gy + 0.15 * font))) << pull[0];
+        } else {
+            // into the picture (-z): a cross, dark at the middle's diagonal; out of it: a dot
+            EXPECT_TRUE(dark(p.at_canvas(gx, gy))) << pull[2];
+            EXPECT_EQ(dark(p.at_canvas(gx + 0.25 * font, gy + 0.25 * font)), pull[2] < 0.0)
+                << pull[2];
+        }
+    }
+}
+
+TEST(RenderScenery, ThreeDimensionalContainersAreSeenThroughTheSlab) {
+    Frame f = stacked_3d();
+    f.position = {{-4.5, -4.5, 0}};
+    f.radius = {0.2};
+    f.species = {0};
+    Scenery sphere;
+    sphere.containers.push_back({ContainerShape::sphere, 4.0, {0.0, 0.0, 0.0}, 2});
+    // Projected: the sphere's outline is a circle of radius 4; in the slab 3 <= z <= 5 its
+    // widest slice is at z = 3, of radius sqrt(16 - 9).
+    const Painted whole(f, Style{}, 600, 600, sphere);
+    Style slab;
+    slab.slab = Slab{3.0, 5.0};
+    const Painted sliced(f, slab, 600, 600, sphere);
+    const double w = whole.layout.wall;
+    for (const auto& [p, radius, other] : std::vector<std::tuple<const Painted*, double, double>>{
+             {&whole, 4.0, std::sqrt(7.0)}, {&sliced, std::sqrt(7.0), 4.0}}) {
+        const auto [cx, cy] = p->layout.to_canvas(0, 0);
+        EXPECT_TRUE(dark(p->at_canvas(cx + radius * p->layout.scale + 0.5 * w, cy))) << radius;
+        EXPECT_TRUE(close(p->at_canvas(cx + other * p->layout.scale + 0.5 * w, cy), white))
+            << radius;
+    }
+    slab.slab = Slab{4.5, 5.0}; // above the sphere: nothing of it
+    const Painted above(f, slab, 600, 600, sphere);
+    const auto [cx, cy] = above.layout.to_canvas(0, 0);
+    EXPECT_TRUE(close(above.at_canvas(cx + 4.0 * above.layout.scale + 0.5 * w, cy), white));
+
+    // A cylinder along x: a channel between two lines y = +-3 (from above, the whole width).
+    Scenery channel;
+    channel.containers.push_back({ContainerShape::cylinder, 3.0, {0.0, 0.0, 0.0}, 0});
+    const Painted seen(f, Style{}, 600, 600, channel);
+    for (double x : {-3.0, 0.0, 3.0})
+        for (double side : {-1.0, 1.0}) {
+            const auto [px, py] = seen.layout.to_canvas(x, side * 3.0);
+            EXPECT_TRUE(dark(seen.at_canvas(px, py - side * 0.5 * w))) << x << " " << side;
+        }
+    EXPECT_TRUE(close(seen.at(0.0, 0.0), white));
+}
+
+TEST(RenderScenery, FarAwayOrHugeContainersDrawNothingAndDoNotHang) {
+    const Frame f = open_box_2d();
+    Scenery scenery;
+    scenery.containers.push_back({ContainerShape::sphere, 1e300, {0.0, 0.0, 0.0}, 2});
+    scenery.containers.push_back({ContainerShape::sphere, 1.0, {1e300, -1e300, 0.0}, 2});
+    scenery.traps.push_back({1e300, 0.0, 0.0});
+    const Painted p(f, Style{}, 400, 400, scenery);
+    const Painted plain(f, Style{}, 400, 400);
+    EXPECT_EQ(p.rgb, plain.rgb);
 }
 
 TEST(RenderPainter, PngWrittenHasTheSizeAndColours) {

@@ -1,7 +1,8 @@
 // Which file of a run directory render reads, and what each source adds from config.toml:
 // GSD before XYZ before JSON snapshots, the ".part" file of an unfinished run, the time of
-// GSD frames from dt, walls and species names for formats that do not store them, and
-// clear errors for directories that hold nothing to render.
+// GSD frames from dt, walls and species names for formats that do not store them, the
+// scenery (containers, traps, gravity) the pictures draw, and clear errors for directories
+// that hold nothing to render.
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/gsd_writer.hpp"
 #include "pedesis/io/tutorial_json.hpp"
@@ -205,6 +206,159 @@ TEST_F(RenderSources, ABrokenConfigOnlyLosesItsFacts) {
     EXPECT_EQ(*facts.dt, 0.5);
     ASSERT_TRUE(facts.periodic);
     EXPECT_EQ(*facts.periodic, (std::array<bool, 3>{false, false, false}));
+}
+
+// The scenery the pictures draw: containers, traps and gravity, each from its [[force]].
+TEST_F(RenderSources, SceneryComesFromTheForceTables) {
+    write("config.toml", R"(dimension = 2
+[box]
+boundary = ["wall", "periodic"]
+[[force]]
+name = "wall"
+potential = "wca"
+[[force]]
+name = "wall"
+potential = "harmonic"
+shape = "sphere"
+radius = 5
+centre = [1.0, -2.5]
+[[force]]
+name = "wall"
+potential = "lj93"
+shape = "cylinder"
+radius = 3.5
+[[force]]
+name = "harmonic_trap"
+k = 2.0
+[[force]]
+name = "harmonic_trap"
+k = {A = 1.0, B = 0.5}
+centre = [3, 4]
+[[force]]
+name = "harmonic_trap"
+k = [1.0, 2.0]
+centre = [-1, 0]
+[[force]]
+name = "gravity"
+force = 0.5
+[[force]]
+name = "gravity"
+axis = "x"
+force = {A = 1.0, B = -2.0, C = 0.0}
+[[force]]
+name = "harmonic"
+k = 10.0
+)");
+    const Scenery s = read_scenery(dir / "config.toml");
+    ASSERT_EQ(s.containers.size(), 2u); // shape "planes" (the default): the box's own walls
+    EXPECT_EQ(s.containers[0].shape, ContainerShape::sphere);
+    EXPECT_EQ(s.containers[0].radius, 5.0);
+    EXPECT_EQ(s.containers[0].centre, (Vec3{1.0, -2.5, 0.0}));
+    EXPECT_EQ(s.containers[1].shape, ContainerShape::cylinder);
+    EXPECT_EQ(s.containers[1].radius, 3.5);
+    EXPECT_EQ(s.containers[1].centre, (Vec3{0.0, 0.0, 0.0}));
+    EXPECT_EQ(s.containers[1].axis, 2);
+    EXPECT_EQ(s.traps, (std::vector<Vec3>{{0, 0, 0}, {3, 4, 0}, {-1, 0, 0}}));
+    // a positive force pulls along -axis (y, the last, by default); a negative one pushes
+    EXPECT_EQ(s.pulls, (std::vector<Vec3>{{0, -1, 0}, {-1, 0, 0}, {1, 0, 0}}));
+
+    write("config.toml", R"(dimension = 3
+[[force]]
+name = "wall"
+shape = "cylinder"
+axis = "x"
+radius = 2.0
+centre = [0, 1, 2]
+[[force]]
+name = "gravity"
+force = -1.0
+)");
+    const Scenery three = read_scenery(dir / "config.toml");
+    ASSERT_EQ(three.containers.size(), 1u);
+    EXPECT_EQ(three.containers[0].axis, 0);
+    EXPECT_EQ(three.containers[0].centre, (Vec3{0, 1, 2}));
+    EXPECT_EQ(three.pulls, (std::vector<Vec3>{{0, 0, 1}})); // along z, the last axis in 3D
+}
+
+// A value of the wrong kind drops its table alone (the run would refuse the config); a
+// broken or hostile config gives no scenery and never an exception.
+TEST_F(RenderSources, BadSceneryValuesAreLeftOut) {
+    const std::string good_trap = "[[force]]\nname = \"harmonic_trap\"\nk = 1.0\ncentre = [7, 7]\n";
+    std::string huge_list = "[";
+    for (int k = 0; k < 100000; ++k) huge_list += "1.0, ";
+    huge_list += "1.0]";
+    const std::vector<std::string> bad = {
+        "name = \"wall\"\nshape = \"sphere\"\nradius = -1.0",
+        "name = \"wall\"\nshape = \"sphere\"\nradius = 0",
+        "name = \"wall\"\nshape = \"sphere\"\nradius = nan",
+        "name = \"wall\"\nshape = \"sphere\"\nradius = inf",
+        "name = \"wall\"\nshape = \"sphere\"\nradius = \"5\"",
+        "name = \"wall\"\nshape = \"sphere\"",
+        "name = \"wall\"\nshape = \"cube\"\nradius = 5.0",
+        "name = \"wall\"\nshape = 5\nradius = 5.0",
+        "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\ncentre = [\"a\", 1.0]",
+        "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\ncentre = [1.0, 2.0, 3.0]",
+        "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\ncentre = [1.0, -nan]",
+        "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\ncentre = " + huge_list,
+        "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\ncentre = {x = 1.0, y = 2.0}",
+        "name = \"wall\"\nshape = \"cylinder\"\nradius = 5.0\naxis = \"w\"",
+        "name = \"wall\"\nshape = \"cylinder\"\nradius = 5.0\naxis = \"xy\"",
+        "name = \"wall\"\nshape = \"cylinder\"\nradius = 5.0\naxis = 1",
+        "name = \"harmonic_trap\"",
+        "name = \"harmonic_trap\"\nk = \"1\"",
+        "name = \"harmonic_trap\"\nk = nan",
+        "name = \"harmonic_trap\"\nk = [1.0]",
+        "name = \"harmonic_trap\"\nk = " + huge_list,
+        "name = \"harmonic_trap\"\nk = {A = \"1\"}",
+        "name = \"harmonic_trap\"\nk = {}",
+        "name = \"harmonic_trap\"\nk = 1.0\ncentre = [inf, 0]",
+        "name = \"harmonic_trap\"\nk = 1.0\ncentre = [[1.0], [2.0]]",
+        "name = \"gravity\"",
+        "name = \"gravity\"\nforce = \"down\"",
+        "name = \"gravity\"\nforce = inf",
+        "name = \"gravity\"\nforce = {A = 1.0, B = \"x\"}",
+        "name = \"gravity\"\nforce = [1.0, 2.0]",
+        "name = \"gravity\"\nforce = 1.0\naxis = \"z\"", // no z in 2D
+        "name = \"gravity\"\nforce = 1.0\naxis = \"\"",
+        "name = 5\nk = 1.0",
+    };
+    for (const std::string& table : bad) {
+        write("config.toml", "dimension = 2\n[[force]]\n" + table + "\n" + good_trap);
+        Scenery s;
+        EXPECT_NO_THROW(s = read_scenery(dir / "config.toml")) << table.substr(0, 80);
+        EXPECT_TRUE(s.containers.empty()) << table.substr(0, 80);
+        EXPECT_TRUE(s.pulls.empty()) << table.substr(0, 80);
+        // the good table beside it stands (only it: the bad one added nothing)
+        EXPECT_EQ(s.traps, (std::vector<Vec3>{{7, 7, 0}})) << table.substr(0, 80);
+    }
+
+    for (const std::string& broken :
+         {std::string("dimension = 2\n[[force]\nname = \"gravity\"\nforce = 1.0\n"),
+          std::string("[[force]]\nname = \"harmonic_trap\"\nk = 1.0\ncentre = [1e400, 0]\n"),
+          std::string("force = \"gravity\"\n"), std::string("force = [1, \"a\", {}]\n"),
+          std::string("[force]\nname = \"gravity\"\nforce = 1.0\n"), std::string("\xff\xfe\x00")}) {
+        write("config.toml", broken);
+        Scenery s;
+        EXPECT_NO_THROW(s = read_scenery(dir / "config.toml"));
+        EXPECT_TRUE(s.empty()) << broken;
+    }
+    EXPECT_TRUE(read_scenery(dir / "no_such.toml").empty());
+    fs::create_directories(dir / "a_directory.toml");
+    EXPECT_TRUE(read_scenery(dir / "a_directory.toml").empty());
+
+    // Thousands of traps: the first few are drawn.
+    std::string many = "dimension = 2\n";
+    for (int k = 0; k < 1000; ++k) many += good_trap;
+    write("config.toml", many);
+    EXPECT_EQ(read_scenery(dir / "config.toml").traps.size(), max_scenery_items);
+}
+
+// render reads the scenery with the trajectory, from the run directory's config.toml.
+TEST_F(RenderSources, OpenedRunCarriesItsScenery) {
+    write_all_formats(dir, 1);
+    write("config.toml", "dimension = 2\n[[force]]\nname = \"gravity\"\nforce = 1.0\n");
+    EXPECT_EQ(open_run_directory(dir, SourceKind::automatic).scenery.pulls,
+              (std::vector<Vec3>{{0, -1, 0}}));
 }
 
 } // namespace

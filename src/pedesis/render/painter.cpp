@@ -2,6 +2,7 @@
 
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
+#include "pedesis/render/scenery_painter.hpp"
 
 #include <fmt/format.h>
 
@@ -306,13 +307,14 @@ Rgb particle_colour(const Frame& f, std::size_t i, const Style& style) {
 }
 
 void paint_frame(Canvas& canvas, const Layout& layout, const Frame& f, const Style& style,
-                 std::size_t frame_index) {
+                 std::size_t frame_index, const Scenery& scenery) {
     cairo_t* cr = canvas.context();
     cairo_save(cr);
     cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
     cairo_paint(cr);
     draw_particles(cr, layout, f, style);
     draw_box(cr, layout, f);
+    draw_scenery(cr, layout, f, scenery, style);
     draw_header(cr, layout, f, style, frame_index);
     if (style.colour != ColourBy::species) draw_colour_bar(cr, layout, style);
     cairo_restore(cr);

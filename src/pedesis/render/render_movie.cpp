@@ -164,7 +164,7 @@ RenderReport render_frames(const RenderRequest& r, const InterruptGuard& guard) 
         check_frame(f, style, where(k));
         // Laid out per frame: a box that changes size is drawn to scale in every frame.
         const Layout layout = make_layout(width, height, f, sidebar);
-        paint_frame(canvas, layout, f, style, k);
+        paint_frame(canvas, layout, f, style, k, run.scenery);
         if (encoder) {
             canvas.rgb_bytes(rgb);
             encoder->write_frame(rgb);

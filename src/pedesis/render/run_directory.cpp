@@ -1,9 +1,9 @@
 #include "pedesis/render/run_directory.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/render/config_table.hpp"
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -58,14 +58,10 @@ std::string unfinished_note(const fs::path& part) {
 
 RunFacts read_run_facts(const fs::path& config_toml) {
     RunFacts facts;
-    if (!is_file(config_toml)) return facts;
-    toml::table config;
-    try {
-        config = toml::parse_file(config_toml.string());
-    } catch (const toml::parse_error&) {
-        return facts;
-    }
-    const int dimension = config["dimension"].value<int>().value_or(3) == 2 ? 2 : 3;
+    const auto parsed = parse_config_table(config_toml);
+    if (!parsed) return facts;
+    const toml::table& config = *parsed;
+    const int dimension = config_dimension(config);
     if (const auto dt = config["run"]["dt"].value<double>(); dt && std::isfinite(*dt) && *dt > 0)
         facts.dt = *dt;
 
@@ -116,6 +112,7 @@ OpenedRun open_run_directory(const fs::path& dir, SourceKind kind) {
     const fs::path xyz = dir / "trajectory.xyz";
 
     OpenedRun run;
+    run.scenery = read_scenery(dir / "config.toml");
     auto take_gsd = [&]() {
         if (is_file(gsd)) {
             run.source = open_gsd_source(gsd, facts);

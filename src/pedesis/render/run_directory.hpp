@@ -1,6 +1,7 @@
 #pragma once
 // Finds the trajectory of a run directory: the best of what the run wrote.
 #include "pedesis/render/frame_source.hpp"
+#include "pedesis/render/scenery.hpp"
 
 #include <filesystem>
 #include <memory>
@@ -14,6 +15,7 @@ enum class SourceKind { automatic, gsd, xyz, json };
 struct OpenedRun {
     std::unique_ptr<FrameSource> source;
     std::vector<std::string> notes; // worth telling the user (an unfinished run's file, ...)
+    Scenery scenery;                // from config.toml: containers, traps, gravity
 };
 
 // The facts config.toml gives, each left unknown when the file is missing or does not say
