@@ -3,6 +3,7 @@
 // trajectories independent of the number of OpenMP threads.
 #include "support/free_abp.hpp"
 #include "support/soft_builder.hpp"
+#include "support/thread_independence.hpp"
 
 #include "pedesis/soft/brownian.hpp"
 #include "pedesis/soft/evolver.hpp"
@@ -12,9 +13,6 @@
 #include "pedesis/soft/self_propulsion.hpp"
 
 #include <gtest/gtest.h>
-#include <omp.h>
-
-#include <cstring>
 
 using namespace pedesis;
 
@@ -56,8 +54,7 @@ TEST(PolarAlign, NoiselessAlignmentOrdersTheSystem) {
 
 // Same seed, 1 and 2 threads: bit-identical positions and directors after 1000 steps
 // (2D; 500 in 3D) of the tutorial's full model (noise on).
-template <int D> SoftState<D> tutorial_run(int threads) {
-    omp_set_num_threads(threads);
+template <int D> SoftState<D> tutorial_run() {
     auto s = test::random_soft_system<D>(D == 2 ? 1000 : 600, D == 2 ? 50.0 : 12.0, 1.0, 7, 1.0);
     Evolver<D> e(s, 0.5);
     e.add_force(std::make_unique<PairForce<D, HarmonicPair>>("harmonic", HarmonicPair{10.0, 2.0}));
@@ -69,24 +66,11 @@ template <int D> SoftState<D> tutorial_run(int threads) {
     return s;
 }
 
-template <int D> void check_thread_independence() {
-    const auto one = tutorial_run<D>(1);
-    const auto two = tutorial_run<D>(2);
-    omp_set_num_threads(1);
-    ASSERT_EQ(one.size(), two.size());
-    EXPECT_EQ(
-        std::memcmp(one.p.position.data(), two.p.position.data(), one.size() * sizeof(Vec<D>)), 0);
-    EXPECT_EQ(std::memcmp(one.director.data(), two.director.data(), one.size() * sizeof(Vec<D>)),
-              0);
-    EXPECT_EQ(std::memcmp(one.image.data(), two.image.data(), one.size() * sizeof(one.image[0])),
-              0);
-}
-
 TEST(Reproducibility, OneAndTwoThreadsBitIdentical2D) {
-    check_thread_independence<2>();
+    test::expect_thread_independent<2>(tutorial_run<2>);
 }
 TEST(Reproducibility, OneAndTwoThreadsBitIdentical3D) {
-    check_thread_independence<3>();
+    test::expect_thread_independent<3>(tutorial_run<3>);
 }
 
 } // namespace

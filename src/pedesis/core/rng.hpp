@@ -20,6 +20,7 @@ enum class RngStream : std::uint32_t {
     orientation = 3,
     thermostat = 4,
     initial_director = 5,
+    tumble = 7,          // run_and_tumble: whether and where to
 };
 
 class CounterRng {

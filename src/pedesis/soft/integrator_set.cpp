@@ -11,6 +11,23 @@ namespace {
 
 constexpr const char* rotation = "brownian_rotation";
 
+// The integrators that turn the directors instead of moving the particles: beside the
+// one position integrator, each at most once, for the reason given.
+struct DirectorIntegrator {
+    const char* name;
+    const char* twice; // what a second one would do
+};
+constexpr DirectorIntegrator director_integrators[] = {
+    {rotation, "the directors would turn twice per step"},
+    {"run_and_tumble", "the particles would tumble at the sum of the rates"},
+};
+
+const DirectorIntegrator* turning(const std::string& name) {
+    for (const DirectorIntegrator& d : director_integrators)
+        if (name == d.name) return &d;
+    return nullptr;
+}
+
 std::string named(const std::string& name, PluginNaming naming) {
     if (naming == PluginNaming::config) return "'" + name + "'";
     for (const PluginInfo& info : plugin_catalogue())
@@ -22,13 +39,13 @@ std::string named(const std::string& name, PluginNaming naming) {
 } // namespace
 
 bool moves_positions(const PluginSpec& integrator) {
-    return integrator.name != rotation;
+    return turning(integrator.name) == nullptr;
 }
 
 std::string position_integrators(PluginNaming naming) {
     std::string s;
     for (const PluginInfo& info : plugin_catalogue())
-        if (info.kind == PluginKind::integrator && std::string(info.name) != rotation)
+        if (info.kind == PluginKind::integrator && !turning(info.name))
             s += (s.empty() ? "" : ", ") +
                  std::string(naming == PluginNaming::config ? info.name : info.python_class);
     return s;
@@ -37,9 +54,9 @@ std::string position_integrators(PluginNaming naming) {
 void check_integrator_added(const std::vector<PluginSpec>& present, const PluginSpec& added,
                             PluginNaming naming) {
     for (const PluginSpec& p : present) {
-        if (!moves_positions(added) && !moves_positions(p))
-            throw InputError(added.where + ": a second " + named(rotation, naming) +
-                             " integrator (the directors would turn twice per step); give one");
+        if (const DirectorIntegrator* d = turning(added.name); d && p.name == added.name)
+            throw InputError(added.where + ": a second " + named(added.name, naming) +
+                             " integrator (" + d->twice + "); give one");
         if (moves_positions(added) && moves_positions(p))
             throw InputError(added.where + ": a second position integrator (" +
                              named(p.name, naming) +
@@ -55,7 +72,7 @@ void check_integrators_complete(const std::vector<PluginSpec>& integrators,
     if (std::none_of(integrators.begin(), integrators.end(), moves_positions))
         throw InputError(missing);
     const bool rotates = std::any_of(integrators.begin(), integrators.end(),
-                                     [](const PluginSpec& i) { return !moves_positions(i); });
+                                     [](const PluginSpec& i) { return i.name == rotation; });
     if (!torques.empty() && !rotates)
         throw InputError(torques.front().where + ": a torque turns nothing without a " +
                          named(rotation, naming) + " integrator");
