@@ -225,8 +225,9 @@ centre = [1.0, -2.5]
 [[force]]
 name = "wall"
 potential = "lj93"
-shape = "cylinder"
+shape = "sphere"
 radius = 3.5
+centre = 2.0
 [[force]]
 name = "harmonic_trap"
 k = 2.0
@@ -254,10 +255,8 @@ k = 10.0
     EXPECT_EQ(s.containers[0].shape, ContainerShape::sphere);
     EXPECT_EQ(s.containers[0].radius, 5.0);
     EXPECT_EQ(s.containers[0].centre, (Vec3{1.0, -2.5, 0.0}));
-    EXPECT_EQ(s.containers[1].shape, ContainerShape::cylinder);
     EXPECT_EQ(s.containers[1].radius, 3.5);
-    EXPECT_EQ(s.containers[1].centre, (Vec3{0.0, 0.0, 0.0}));
-    EXPECT_EQ(s.containers[1].axis, 2);
+    EXPECT_EQ(s.containers[1].centre, (Vec3{2.0, 2.0, 0.0})); // one number for every axis
     EXPECT_EQ(s.traps, (std::vector<Vec3>{{0, 0, 0}, {3, 4, 0}, {-1, 0, 0}}));
     // a positive force pulls along -axis (y, the last, by default); a negative one pushes
     EXPECT_EQ(s.pulls, (std::vector<Vec3>{{0, -1, 0}, {-1, 0, 0}, {1, 0, 0}}));
@@ -270,13 +269,21 @@ axis = "x"
 radius = 2.0
 centre = [0, 1, 2]
 [[force]]
+name = "wall"
+shape = "cylinder"
+radius = 3.0
+centre = -1.5
+[[force]]
 name = "gravity"
 force = -1.0
 )");
     const Scenery three = read_scenery(dir / "config.toml");
-    ASSERT_EQ(three.containers.size(), 1u);
+    ASSERT_EQ(three.containers.size(), 2u);
+    EXPECT_EQ(three.containers[0].shape, ContainerShape::cylinder);
     EXPECT_EQ(three.containers[0].axis, 0);
     EXPECT_EQ(three.containers[0].centre, (Vec3{0, 1, 2}));
+    EXPECT_EQ(three.containers[1].axis, 2); // the last axis by default
+    EXPECT_EQ(three.containers[1].centre, (Vec3{-1.5, -1.5, -1.5}));
     EXPECT_EQ(three.pulls, (std::vector<Vec3>{{0, 0, 1}})); // along z, the last axis in 3D
 }
 
@@ -301,6 +308,8 @@ TEST_F(RenderSources, BadSceneryValuesAreLeftOut) {
         "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\ncentre = [1.0, -nan]",
         "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\ncentre = " + huge_list,
         "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\ncentre = {x = 1.0, y = 2.0}",
+        "name = \"wall\"\nshape = \"cylinder\"\nradius = 5.0",             // 3D only
+        "name = \"wall\"\nshape = \"sphere\"\nradius = 5.0\naxis = \"z\"", // no z in 2D
         "name = \"wall\"\nshape = \"cylinder\"\nradius = 5.0\naxis = \"w\"",
         "name = \"wall\"\nshape = \"cylinder\"\nradius = 5.0\naxis = \"xy\"",
         "name = \"wall\"\nshape = \"cylinder\"\nradius = 5.0\naxis = 1",

@@ -17,10 +17,12 @@ std::optional<double> finite(const toml::node* node) {
     return std::nullopt;
 }
 
-// "centre": the origin when absent, else exactly one finite number per axis.
+// "centre": the origin when absent, one finite number for every axis, or exactly one per
+// axis (as plugin_axes reads it).
 std::optional<Vec3> centre_of(const toml::table& force, int dimension) {
     const toml::node* node = force.get("centre");
     if (!node) return Vec3{};
+    if (const auto all = finite(node)) return Vec3{*all, *all, dimension == 3 ? *all : 0.0};
     const toml::array* list = node->as_array();
     if (!list || list->size() != static_cast<std::size_t>(dimension)) return std::nullopt;
     Vec3 c{};
@@ -92,8 +94,9 @@ void add_wall(const toml::table& force, int dimension, Scenery& out) {
     c.shape = *shape == "sphere" ? ContainerShape::sphere : ContainerShape::cylinder;
     c.radius = *radius;
     c.centre = *centre;
-    // a cylinder's axis may be z in 2D (the default): its cross-section, a circle
-    const auto axis = axis_of(force, 3, 2);
+    // a cylinder is 3D only (the run refuses one in 2D); its axis is the last by default
+    if (c.shape == ContainerShape::cylinder && dimension != 3) return;
+    const auto axis = axis_of(force, dimension, dimension - 1);
     if (!axis) return;
     c.axis = *axis;
     out.containers.push_back(c);

@@ -15,7 +15,7 @@ struct Container {
     ContainerShape shape = ContainerShape::sphere;
     double radius = 0.0; // > 0 and finite
     Vec3 centre{};       // z = 0 in 2D
-    int axis = 2;        // a cylinder's axis (0, 1, 2); z in 2D: a circle
+    int axis = 2;        // a cylinder's axis (0, 1, 2); cylinders are 3D only
 };
 
 struct Scenery {
@@ -32,8 +32,8 @@ inline constexpr std::size_t max_scenery_items = 16;
 // From [[force]] tables name = "wall" (shape "sphere" | "cylinder", radius, centre, axis),
 // "harmonic_trap" (k, centre) and "gravity" (force, axis). A config that is missing or
 // broken gives nothing; a table with a value of the wrong kind (a string for a number, a
-// negative or non-finite radius, a centre with the wrong number of coordinates) is left
-// out alone, as the run would refuse it: the frames are what counts.
+// negative or non-finite radius, a centre with the wrong number of coordinates, a cylinder
+// in 2D) is left out alone, as the run would refuse it: the frames are what counts.
 Scenery read_scenery(const std::filesystem::path& config_toml);
 
 } // namespace pedesis::render
