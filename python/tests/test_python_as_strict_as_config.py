@@ -22,6 +22,7 @@ LANGEVIN = '[[integrator]]\nname = "langevin"\nT = 1.0\ngamma = 1.0\n'
 NVE = '[[integrator]]\nname = "nve"\n'
 ROTATION = '[[integrator]]\nname = "brownian_rotation"\nT = 0.1\ngamma = 1.0\n'
 ALIGN = '[[torque]]\nname = "polar_align"\nJ = 1.0\na = 2.0\n'
+TUMBLE = '[[integrator]]\nname = "run_and_tumble"\nrate = 1.0\n'
 
 
 def brownian(s):
@@ -44,6 +45,10 @@ def align(s):
     return pedesis.PolarAlign(s, 1.0, 2.0)
 
 
+def tumble(s):
+    return pedesis.RunAndTumble(s, rate=1.0)
+
+
 def steps(e):
     e.evolve(0.01)
 
@@ -61,6 +66,8 @@ REFUSALS = [
      [("i", nve), ("i", brownian)], "a second position integrator"),
     ("two rotations", "brownian", BROWNIAN + ROTATION + ROTATION, "a second 'brownian_rotation'",
      [("i", brownian), ("i", rotation), ("i", rotation)], "a second BrownianRotIntegrator"),
+    ("two run-and-tumbles", "brownian", BROWNIAN + TUMBLE + TUMBLE, "a second 'run_and_tumble'",
+     [("i", brownian), ("i", tumble), ("i", tumble)], "a second RunAndTumble"),
     ("rotation only", "brownian", ROTATION, "needs an [[integrator]]",
      [("i", rotation), ("step", steps)], "nothing moves the particles"),
     ("no integrator", "brownian", "", "needs an [[integrator]]",
@@ -68,6 +75,10 @@ REFUSALS = [
     ("torque without rotation", "brownian", BROWNIAN + ALIGN,
      "a torque turns nothing without a 'brownian_rotation' integrator",
      [("i", brownian), ("t", align), ("step", steps)],
+     "a torque turns nothing without a BrownianRotIntegrator"),
+    ("torque with run-and-tumble only", "brownian", BROWNIAN + TUMBLE + ALIGN,
+     "a torque turns nothing without a 'brownian_rotation' integrator",
+     [("i", brownian), ("i", tumble), ("t", align), ("step", steps)],
      "a torque turns nothing without a BrownianRotIntegrator"),
     ("negative temperature", "brownian",
      '[[integrator]]\nname = "brownian"\nT = -1.0\ngamma = 1.0\n', "must be >= 0",

@@ -54,9 +54,9 @@ std::vector<PluginInfo> active_model_rows() {
              "active_torque",
              "ActiveTorque",
              {{"torque", required, ParamLimit::any, per_species,
-               "active torque about z (2D: the angular velocity times gamma of "
-               "brownian_rotation); in 3D also a list of three, one lab-frame vector for every "
-               "species",
+               "torque c_s about z (with brownian_rotation of friction gamma: omega = c_s / "
+               "gamma); in 3D also a list of three numbers, one lab-frame torque vector for "
+               "every species",
                false, true}},
              "tau_i = c_s (2D; 3D: c_s e_z, or the lab-frame vector given); with "
              "brownian_rotation omega = tau / gamma"},
