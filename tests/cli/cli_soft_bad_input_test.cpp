@@ -135,7 +135,7 @@ TEST_F(SoftBadInput, InconsistentIntegrators) {
                          "0.0\ngamma = 1.0\n"),
                     {"a second position integrator"});
     expect_rejected(with("length = 20", "length = 20\nboundary = [\"periodic\", \"wall\"]"),
-                    {"needs periodic axes", "axis 1"});
+                    {"axis y is a wall", "[[force]] name = \"wall\""});
 }
 
 // Initial files: ids that are not 0..N-1, positions outside the box, NaN, a zero director.

@@ -112,6 +112,12 @@ template <int D> class WallForce final : public ForceTerm<D> {
     WallShape shape() const { return shape_.kind; }
 
     void add_forces(SoftState<D>& s, const NeighborList<D>&) const override {
+        // (the config reader says so at set-up; a program that builds its own evolver
+        // learns it here, at the first step, rather than from particles that never stop)
+        if (shape_.kind == WallShape::planes && !s.box.any_wall())
+            throw InputError("wall: shape \"planes\" stands on the box's walled faces, and "
+                             "every axis of this box is periodic: wall an axis, or give the "
+                             "wall shape = \"sphere\" or \"cylinder\"");
         tabulate(s);
         const WallLaw* law = laws_.data();
         const std::uint16_t* sp = s.p.species.data();
