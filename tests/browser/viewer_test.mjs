@@ -9,7 +9,9 @@
 // drawn centres are that frame's positions; in 2D the pixel at the projected centre of
 // every particle that no other covers has its species' colour in the PNG the screenshot
 // button saves; colouring by speed changes the colours; the plot has a point per row of
-// log.csv. And it sends the server bad requests: each a 4xx with a message.
+// log.csv. Runs written by hand with walls, a container, a trap and gravity in their
+// config.toml show them where they are (2D and 3D, served and exported). And it sends the
+// server bad requests: each a 4xx with a message.
 //
 // Every page is watched for errors: uncaught exceptions, console errors (a resource that
 // failed to load, a Content-Security-Policy violation) and securitypolicyviolation events.
@@ -579,13 +581,117 @@ async function checkOwnColumn(browser) {
   }
 }
 
+// A run's walls, container, trap and gravity (issue 50), from a config.toml and an extended
+// XYZ written by hand (the frames give the walls, the config the rest): the page counts
+// what it draws, and the PNG of the screenshot button is dark where the container's wall
+// line, the box's walls, the trap's marker and the gravity arrow are, where the same
+// frames without the config are not. In 3D the trap and the arrow's head show through
+// the particles. The exported page draws them too.
+function sceneryRun(name, dimension, pbc, particles, config) {
+  const dir = path.join(scratch, name);
+  fs.mkdirSync(dir, { recursive: true });
+  const lattice = dimension === 2 ? 'Lattice="20 0 0 0 20 0 0 0 1" Origin="-10 -10 -0.5"'
+    : 'Lattice="12 0 0 0 12 0 0 0 12" Origin="-6 -6 -6"';
+  fs.writeFileSync(path.join(dir, 'trajectory.xyz'), `${particles.length}\n${lattice} pbc="${pbc}" ` +
+    `Properties=species:S:1:pos:R:3:radius:R:1 Time=0\n${particles.map((p) => `A ${p.join(' ')} 0.5\n`).join('')}`);
+  if (config) fs.writeFileSync(path.join(dir, 'config.toml'), config);
+  return dir;
+}
+
+// The PNG's pixels at the projections of world points, in a page opened at `url`.
+async function sceneryPixels(browser, url, points) {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+  const errors = await watch(page);
+  await page.goto(url);
+  await page.waitForFunction(() => window.pedesisReady === true, null, { timeout: 60000 });
+  const drawn = await page.evaluate(() => window.pedesisView.scenery());
+  const projected = await page.evaluate((pts) => pts.map(([x, y, z]) => window.pedesisView.projectPoint(x, y, z)), points);
+  const pixels = await pngPixels(page, projected);
+  const info = await page.evaluate(() => window.pedesisView.info);
+  await page.close();
+  return { drawn, pixels, info, errors };
+}
+
+async function checkScenery(browser) {
+  const dark = (p) => p[0] + p[1] + p[2] < 3 * 90;
+  const light = (p) => p[0] + p[1] + p[2] > 3 * 200;
+  const scenery2d = '[[force]]\nname = "wall"\npotential = "wca"\n' +
+    '[[force]]\nname = "wall"\npotential = "wca"\nshape = "sphere"\nradius = 6.0\ncentre = [1.0, -1.0]\n' +
+    '[[force]]\nname = "harmonic_trap"\nk = {A = 1.0}\ncentre = [-5.0, 4.0]\n' +
+    '[[force]]\nname = "gravity"\nforce = 1.0\n';
+  const far2d = [[-8, -8, 0], [8, -8, 0], [-8, 8, 0]];
+  const withDir = sceneryRun('scenery_2d', 2, 'F T F', far2d,
+    `dimension = 2\n[box]\nlength = 20.0\nboundary = ["wall", "periodic"]\n${scenery2d}`);
+  const plainDir = sceneryRun('plain_2d', 2, 'T T F', far2d, null);
+  // (the wall's thickness and the marker's size: 0.8 % and 2 % of the box, scenery.js)
+  const t = 0.16, size = 0.4;
+  const marks = { 'container line (right)': [1 + 6 + t / 2, -1, 0], 'container line (top)': [1, 5 + t / 2, 0],
+    'trap centre': [-5, 4, 0], 'trap cross arm': [-5 + 0.8 * size, 4, 0],
+    // the arrow, centred 2.5 sizes in from the top right corner, 3 sizes long, pointing down
+    'gravity arrow head': [9, 9 - 0.25, 0], 'gravity arrow shaft': [9, 9 + 0.4, 0],
+    'left wall': [-10 - t / 2, 0, 0], 'right wall': [10 + t / 2, 3, 0] };
+  const quiet = { 'inside the container': [1, -1 + 3, 0], 'beyond the periodic top edge': [0, 10 + t, 0],
+    'beside the arrow\'s shaft (a head is wider)': [9 + 0.15, 9 + 0.4, 0] };
+  const points = [...Object.values(marks), ...Object.values(quiet)];
+  const names = [...Object.keys(marks), ...Object.keys(quiet)];
+  const served = async (dir) => {
+    const { server, url } = await startServer(dir);
+    try { return await sceneryPixels(browser, url, points); } finally { server.kill('SIGINT'); }
+  };
+  const seen = await served(withDir), plain = await served(plainDir);
+  const sent = seen.info.scenery, c = sent.containers[0] || {};
+  check(sent.containers.length === 1 && c.shape === 'sphere' && c.radius === 6 && String(c.centre) === '1,-1,0'
+    && String(sent.traps) === '-5,4,0' && String(sent.gravity) === '0,-1,0',
+  `scenery 2D: /api/info sends it as numbers: ${JSON.stringify(sent)}`);
+  check(JSON.stringify(seen.drawn) === JSON.stringify({ walls: 1, containers: 1, traps: 1, gravity: 1 }),
+    `scenery 2D: the page draws one walled axis, container, trap and arrow: ${JSON.stringify(seen.drawn)}`);
+  const markCount = Object.keys(marks).length;
+  names.forEach((name, k) => {
+    const want = k < markCount ? dark : light;
+    check(want(seen.pixels[k]) && light(plain.pixels[k]),
+      `scenery 2D: ${name} is ${k < markCount ? 'dark' : 'clear'} in the PNG (${seen.pixels[k].slice(0, 3)}), clear without the config (${plain.pixels[k].slice(0, 3)})`);
+  });
+  check(seen.errors.length === 0 && plain.errors.length === 0, `scenery 2D: no error in the page ${[...seen.errors, ...plain.errors].join('; ')}`);
+
+  // 3D: walls on z, a sphere, a trap off centre, gravity along -z (the default axis)
+  const far3d = [[-5, -5, -5], [5, 5, -5], [-5, 5, 5]];
+  const scenery3d = '[[force]]\nname = "wall"\npotential = "wca"\nshape = "sphere"\nradius = 3.0\n' +
+    '[[force]]\nname = "harmonic_trap"\nk = [1.0, 1.0, 2.0]\ncentre = [2.0, -2.0, 1.0]\n' +
+    '[[force]]\nname = "gravity"\nforce = 2.0\n';
+  const with3d = sceneryRun('scenery_3d', 3, 'T T F', far3d,
+    `dimension = 3\n[box]\nlength = 12.0\nboundary = ["periodic", "periodic", "wall"]\n${scenery3d}`);
+  const plain3d = sceneryRun('plain_3d', 3, 'T T T', far3d, null);
+  // the arrow (scenery.js, s = 3 % of the box): from (6 - 2 s, 6 - 2 s, 6 - s) down a
+  // quarter of the box, its head the last 0.3 of that
+  const s3 = 0.36, tip = 6 - s3 - 3;
+  const points3d = [[2, -2, 1], [6 - 2 * s3, 6 - 2 * s3, tip + 0.36]];
+  const served3d = async (dir) => {
+    const { server, url } = await startServer(dir);
+    try { return await sceneryPixels(browser, url, points3d); } finally { server.kill('SIGINT'); }
+  };
+  const seen3d = await served3d(with3d), plainSeen3d = await served3d(plain3d);
+  check(JSON.stringify(seen3d.drawn) === JSON.stringify({ walls: 1, containers: 1, traps: 1, gravity: 1 }),
+    `scenery 3D: the page draws one walled axis, the sphere, the trap and the arrow: ${JSON.stringify(seen3d.drawn)}`);
+  ['trap centre', 'gravity arrow head'].forEach((name, k) => check(dark(seen3d.pixels[k]) && light(plainSeen3d.pixels[k]),
+    `scenery 3D: the ${name} is dark in the PNG (${seen3d.pixels[k].slice(0, 3)}), clear without the config (${plainSeen3d.pixels[k].slice(0, 3)})`));
+  check(seen3d.errors.length === 0, `scenery 3D: no error in the page ${seen3d.errors.join('; ')}`);
+
+  const file = path.join(scratch, 'scenery.html');
+  execFileSync(binary, ['view', withDir, '--export', file], { stdio: 'ignore' });
+  const exported = await sceneryPixels(browser, 'file://' + file, points);
+  check(JSON.stringify(exported.drawn) === JSON.stringify(seen.drawn)
+    && exported.pixels.every((p, k) => (k < markCount ? dark(p) : light(p))),
+  `scenery export: the exported page draws them too: ${JSON.stringify(exported.drawn)}`);
+}
+
 // A run whose strings are markup and script: species names, log.csv's column names and the
 // run directory's name, in an extended XYZ file and a log written by hand (four disks at
 // rest). Served (pedesis view) and exported (--export), the page runs none of it
 // (window.__pwned stays unset), shows every name as literal text in the legend, the plot's
 // menu and the title, and its policy reports no violation; the server sends its
 // Content-Security-Policy with the page, and the exported file carries one and names no
-// path of this machine. Coloured by speed, the all-zero frame is the bar's low end, 0.
+// path of this machine. Coloured by speed, the all-zero frame is the bar's low end, 0. Its
+// config.toml puts markup in the scenery's words and numbers: none of it is sent or drawn.
 const HOSTILE = ['<img/src/onerror=window.__pwned=1>', '</script><script>window.__pwned=2</script>',
   '<!--<script>', 'a&amp;b'];
 
@@ -601,6 +707,10 @@ async function hostilePage(page, name) {
   check(JSON.stringify(shown.legend) === JSON.stringify(HOSTILE),
     `${name}: the legend shows the species names as text: ${JSON.stringify(shown.legend)}`);
   check(shown.title.includes('hostile<b>run'), `${name}: the title shows the run's name as text: ${shown.title}`);
+  const scenery = await page.evaluate(() => [window.pedesisView.info.scenery, window.pedesisView.scenery()]);
+  check(['containers', 'traps', 'gravity'].every((k) => Array.isArray(scenery[0][k]) && scenery[0][k].length === 0)
+    && scenery[1].containers + scenery[1].traps + scenery[1].gravity === 0,
+  `${name}: markup in the config's scenery sends and draws none of it: ${JSON.stringify(scenery)}`);
   const columns = await page.evaluate(() => (window.pedesisView.logPoints(), [...document.querySelectorAll('#column option')].map((o) => o.text)));
   check(HOSTILE.every((h) => columns.includes(h)), `${name}: the plot's menu shows log.csv's columns as text: ${JSON.stringify(columns)}`);
   await page.evaluate(() => window.pedesisView.setColour('speed'));
@@ -619,6 +729,12 @@ async function checkHostile(browser) {
     'Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3 Time=0\n' +
     HOSTILE.map((h, k) => `${h} ${3 * k - 4.5} 0 0 1.0 0 0 0\n`).join(''));
   fs.writeFileSync(path.join(dir, 'log.csv'), `time,step,${HOSTILE.join(',')}\n0,0,1,2,3,4\n1,10,2,3,4,5\n`);
+  // and a config whose scenery holds markup where words and numbers belong
+  fs.writeFileSync(path.join(dir, 'config.toml'), 'dimension = 2\n' +
+    `[[force]]\nname = "wall"\nshape = "sphere"\nradius = ${JSON.stringify(HOSTILE[0])}\n` +
+    `[[force]]\nname = "wall"\nshape = ${JSON.stringify(HOSTILE[1])}\nradius = 2.0\n` +
+    `[[force]]\nname = "harmonic_trap"\nk = 1.0\ncentre = [${JSON.stringify(HOSTILE[2])}, 0.0]\n` +
+    `[[force]]\nname = "gravity"\nforce = 1.0\naxis = ${JSON.stringify(HOSTILE[1])}\n`);
   const { server, url } = await startServer(dir);
   try {
     const index = await fetch(url);
@@ -679,6 +795,7 @@ async function main() {
       await checkRun(browser, name, dimension, path.join(scratch, name.replace(' ', '_')));
     await checkExport(browser, path.join(scratch, 'soft_2D'));
     await checkOwnColumn(browser);
+    await checkScenery(browser);
     await checkHostile(browser);
     await checkLive(browser);
     await checkLiveEvent(browser);

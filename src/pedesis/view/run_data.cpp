@@ -1,5 +1,6 @@
 #include "pedesis/view/run_data.hpp"
 
+#include "pedesis/render/scenery.hpp"
 #include "pedesis/view/frame_arrays.hpp"
 
 #include <cmath>
@@ -9,6 +10,26 @@
 #include <string>
 
 namespace pedesis::view {
+
+namespace {
+
+// Numbers only (read_scenery checked each one finite), and the shape as a word of ours:
+// nothing of the config's own text reaches the page.
+nlohmann::json scenery_json(const render::Scenery& scenery) {
+    nlohmann::json containers = nlohmann::json::array();
+    for (const render::Container& c : scenery.containers)
+        containers.push_back(
+            {{"shape", c.shape == render::ContainerShape::sphere ? "sphere" : "cylinder"},
+             {"radius", c.radius},
+             {"centre", c.centre},
+             {"axis", c.axis}});
+    nlohmann::json traps = nlohmann::json::array(), gravity = nlohmann::json::array();
+    for (const render::Vec3& t : scenery.traps) traps.push_back(t);
+    for (const render::Vec3& g : scenery.pulls) gravity.push_back(g);
+    return {{"containers", containers}, {"traps", traps}, {"gravity", gravity}};
+}
+
+} // namespace
 
 nlohmann::json run_info(render::FrameSource& source, const render::Frame& f,
                         const std::filesystem::path& run_dir) {
@@ -39,7 +60,8 @@ nlohmann::json run_info(render::FrameSource& source, const render::Frame& f,
             {"particles", f.size()},
             {"species", species},
             {"fields", fields},
-            {"colour_by", colour_by}};
+            {"colour_by", colour_by},
+            {"scenery", scenery_json(render::read_scenery(run_dir / "config.toml"))}};
 }
 
 // log.csv as columns and rows of numbers ("inf" and "nan", which pandas writes and reads,

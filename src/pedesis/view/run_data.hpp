@@ -10,7 +10,9 @@
 namespace pedesis::view {
 
 // run, source, dimension, box_lo, box_length, periodic, frames, particles, species
-// (name, radius), fields (what the frames can give: frame_arrays.hpp), from frame 0.
+// (name, radius), fields (what the frames can give: frame_arrays.hpp), from frame 0; and
+// scenery, from the run's config.toml (render/scenery.hpp): containers (shape, radius,
+// centre, axis), traps (centres) and gravity (unit directions of the pull).
 nlohmann::json run_info(render::FrameSource& source, const render::Frame& first,
                         const std::filesystem::path& run_dir);
 

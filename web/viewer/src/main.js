@@ -4,8 +4,9 @@
 // and playback over the frames, colour by species or any number per particle (speed,
 // polarity angle, energy, a column of the file's own) with a colour bar, director
 // arrows, and the run's log plotted with uPlot beside it, with a cursor at the frame's
-// time. Frames come from the server as binary typed arrays (src/pedesis/view), and only
-// a window of frames around the cursor is kept.
+// time. Walls, containers, traps and gravity are drawn from the run's config
+// (scenery.js). Frames come from the server as binary typed arrays (src/pedesis/view),
+// and only a window of frames around the cursor is kept.
 //
 // Every string from the run or the server (species and column names, the run's name,
 // messages) reaches the document as text only (textContent, new Option), never as markup,
@@ -14,6 +15,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import uPlot from 'uplot';
+import { sceneryGroup } from './scenery.js';
 import 'uplot/dist/uPlot.min.css';
 import './viewer.css';
 
@@ -124,7 +126,8 @@ class Viewer {
     view.prepend(this.renderer.domElement);
     this.scene = new THREE.Scene();
     // In 2D without a GPU the page draws the disks itself, on a canvas under WebGL's,
-    // which then draws only the box and the director lines on a transparent ground.
+    // which then draws only the box, the scenery and the director lines on a transparent
+    // ground.
     this.cpuDisks = this.dim === 2 && drawsOnCpu(this.renderer);
     this.renderer.setClearColor(0xffffff, this.cpuDisks ? 0 : 1);
     if (this.cpuDisks) {
@@ -160,6 +163,9 @@ class Viewer {
     }
     this.controls.addEventListener('change', () => this.requestRender());
     this.scene.add(this.boxOutline(lo, L));
+    // walls, containers, traps and gravity (scenery.js), over the particles
+    this.scenery = sceneryGroup(info);
+    this.scene.add(this.scenery);
 
     this.capacity = 0;
     this.mesh = null;
@@ -644,6 +650,7 @@ async function main() {
     info, frames: () => viewer.frames, frameIndex: () => viewer.index,
     instanceCount: () => viewer.mesh.geometry.drawRange.count,
     drawsOnCpu: () => viewer.cpuDisks,
+    scenery: () => viewer.scenery.userData,
     // the screenshot's canvas, as a PNG data URL
     pictureUrl: () => viewer.picture().toDataURL('image/png'),
     setFrame: (k) => viewer.show(k), setColour: (m) => viewer.setColour(m),
