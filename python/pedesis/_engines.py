@@ -14,6 +14,7 @@ __all__ = [
     "System", "Evolver", "Dump", "Gas", "Plugin", "InputError", "RunError",
     "HarmonicForce", "WcaForce", "LjForce", "SelfPropulsion", "PolarAlign", "BrownianIntegrator",
     "BrownianRotIntegrator", "LangevinIntegrator", "NVEIntegrator",
+    "Gravity", "HarmonicTrap", "ActiveOU",
     "ActiveTorque", "RunAndTumble", "NematicAlign", "VelocityAlign",
     "Simulation", "Periodic", "GSDWriter", "XYZWriter", "Callback", "StopName", "Recording",
 ]

@@ -20,6 +20,7 @@ enum class RngStream : std::uint32_t {
     orientation = 3,
     thermostat = 4,
     initial_director = 5,
+    active_velocity = 6, // active_ou's p: its stationary start and its noise
     tumble = 7,          // run_and_tumble: whether and where to
 };
 

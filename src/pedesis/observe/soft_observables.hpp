@@ -37,20 +37,21 @@ template <int D> double kinetic_energy(const SoftState<D>& s) {
 // The sums over particles [0, owned) that every quantity of the soft log is made of, so
 // that processes sharing a run (domain decomposition) each sum their own particles and
 // add the sums up: reductions, not a gathered state. Displacements are from `start`
-// (unwrapped, by tag); alpha[s] is species s's active force; only finite masses count
-// as kinetic.
+// (unwrapped, by tag); alpha[s] is species s's active force along the director, and
+// `active` (empty, or one per owned particle) the other active forces
+// (ForceTerm::add_active_forces); only finite masses count as kinetic.
 template <int D> struct SoftLogSums {
     Vec<D> director{};                 // sum n_i
     double squared_displacement = 0.0; // sum |dr_i|^2
     Vec<D> displacement{};             // sum dr_i
-    double swim = 0.0;                 // sum alpha_i n_i . dr_i
-    Vec<D> swim_direction{};           // sum alpha_i n_i
+    double swim = 0.0;                 // sum F_active,i . dr_i
+    Vec<D> swim_direction{};           // sum F_active,i
     Vec<D> momentum{};                 // sum m_i v_i
     double mass = 0.0;                 // sum m_i
     double kinetic = 0.0;              // sum m_i v_i^2 / 2
     double mobile = 0.0;               // particles of finite mass
     double particles = 0.0;
-    SymTensor swim_tensor{};    // sum alpha_i n_i dr_i (symmetrised)
+    SymTensor swim_tensor{};    // sum F_active,i dr_i (symmetrised)
     SymTensor kinetic_tensor{}; // sum m_i v_i v_i
 
     static constexpr std::size_t size = 4 * D + 6 + 12;
@@ -93,8 +94,8 @@ SymTensor thermal_tensor_of(const SoftLogSums<D>& t, const std::array<bool, D>& 
     return k;
 }
 
-// The swim part: sum alpha n_a (dr - drift)_b (symmetrised), the drift the mean
-// displacement: the tensor whose trace / d V is the swim pressure (self_propulsion.hpp).
+// The swim part: sum F_active,a (dr - drift)_b (symmetrised), the drift the mean
+// displacement: the tensor whose trace / d V is the swim pressure (active_virial.hpp).
 template <int D> SymTensor swim_tensor_of(const SoftLogSums<D>& t) {
     SymTensor s = t.swim_tensor;
     if (t.particles > 0.0)
@@ -104,7 +105,8 @@ template <int D> SymTensor swim_tensor_of(const SoftLogSums<D>& t) {
 
 template <int D>
 SoftLogSums<D> soft_log_sums(const SoftState<D>& s, const std::vector<Vec<D>>& start,
-                             const std::vector<double>& alpha) {
+                             const std::vector<double>& alpha,
+                             const std::vector<Vec<D>>& active = {}) {
     SoftLogSums<D> t;
     for (std::size_t i = 0; i < s.owned(); ++i) {
         const Vec<D> dr = s.unwrapped(i) - start[s.p.tag[i]];
@@ -115,6 +117,11 @@ SoftLogSums<D> soft_log_sums(const SoftState<D>& s, const std::vector<Vec<D>>& s
         t.swim += a * dot(s.director[i], dr);
         t.swim_direction += a * s.director[i];
         add_sym_outer<D>(t.swim_tensor, s.director[i], dr, a);
+        if (!active.empty()) {
+            t.swim += dot(active[i], dr);
+            t.swim_direction += active[i];
+            add_sym_outer<D>(t.swim_tensor, active[i], dr, 1.0);
+        }
         const double m = s.p.mass(i);
         if (std::isfinite(m)) {
             t.momentum += m * s.p.velocity[i];

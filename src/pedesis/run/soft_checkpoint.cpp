@@ -15,7 +15,8 @@ namespace pedesis {
 
 namespace {
 
-constexpr std::uint32_t soft_checkpoint_version = 3; // 3: the run's summed temperature
+// 3: the run's summed temperature; 4: active_ou's active velocities
+constexpr std::uint32_t soft_checkpoint_version = 4;
 
 // The state's arrays in checkpoint order; one list serves saving and loading.
 template <class State, class F> void for_each_array(State& s, F&& f) {
@@ -50,6 +51,7 @@ void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>&
     binary::put(out, book.sum_pressure);
     binary::put(out, book.sum_polar_order);
     binary::put(out, book.sum_temperature);
+    binary::put(out, s.active_velocity); // (empty without active_ou)
     file.commit();
 }
 
@@ -82,19 +84,23 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
         binary::get(in, book.sum_pressure);
         binary::get(in, book.sum_polar_order);
         binary::get(in, book.sum_temperature);
+        binary::get(in, s.active_velocity);
         file.finish();
         const std::size_t n = s.p.position.size();
         if (s.p.velocity.size() != n || s.p.tag.size() != n || s.p.species.size() != n ||
             s.director.size() != n || s.force.size() != n || s.torque.size() != n ||
             s.image.size() != n || book.start.size() != n ||
+            (!s.active_velocity.empty() && s.active_velocity.size() != n) ||
             (!reference.empty() && reference.size() != n))
             throw InputError("file is corrupt (array lengths differ)");
         check_restored_particles(s.p, s.box, true);
         for (std::size_t i = 0; i < n; ++i)
             for (int a = 0; a < D; ++a)
-                if (!std::isfinite(s.director[i][a]) || !std::isfinite(book.start[i][a]))
+                if (!std::isfinite(s.director[i][a]) || !std::isfinite(book.start[i][a]) ||
+                    (!s.active_velocity.empty() && !std::isfinite(s.active_velocity[i][a])))
                     throw InputError("corrupt state: particle " + std::to_string(s.p.tag[i]) +
-                                     ": director or start position is not a finite number");
+                                     ": director, start position or active velocity is not a "
+                                     "finite number");
         if (!std::isfinite(s.time) || s.time < 0.0)
             throw InputError("corrupt state: the time is not a finite number >= 0");
 

@@ -10,6 +10,7 @@
 #include "pedesis/run/soft_checkpoint.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/build_system.hpp"
+#include "pedesis/soft/active_ou.hpp"
 #include "pedesis/soft/brownian.hpp"
 #include "pedesis/soft/domain_decomposition.hpp"
 #include "pedesis/soft/langevin.hpp"
@@ -115,6 +116,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             for (std::size_t i = 0; i < state_.size(); ++i)
                 book_.start[state_.p.tag[i]] = state_.unwrapped(i);
         }
+        check_active_ou();
         read_observable_parameters(table);
         read_swim_forces();
         particles_ = state_.size();
@@ -418,6 +420,30 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             for (const auto& f : evolver_->forces()) swim_alpha_[sp] += f->swim_force(sp, species);
     }
 
+    // active_ou's force is gamma p with the position integrator's friction, and its active
+    // velocities stay on one process: both refused at set-up rather than at the first step.
+    void check_active_ou() const {
+        for (const auto& f : evolver_->forces())
+            if (const auto* ou = dynamic_cast<const ActiveOU<D>*>(f.get())) {
+                try {
+                    ou->frictions(state_);
+                } catch (const InputError& e) {
+                    throw InputError(c_.file + ": " + e.what());
+                }
+                if (o_.comm && o_.comm->size() > 1)
+                    throw InputError(c_.file + ": active_ou runs on one process: its particles' "
+                                               "active velocities do not travel between "
+                                               "processes; start it without mpirun");
+            }
+    }
+
+    // The active forces beyond the directors' (active_ou), per owned particle, or none.
+    const std::vector<Vec<D>>& active_forces() const {
+        active_forces_.clear();
+        for (const auto& f : evolver_->forces()) f->add_active_forces(state_, active_forces_);
+        return active_forces_;
+    }
+
     // An overdamped run's ideal part is the bath's n T, isotropic.
     void isotropic_ideal(Measured& m) const {
         for (int a = 0; a < D; ++a) m.ideal_tensor[a] = m.ideal;
@@ -441,7 +467,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             isotropic_ideal(m);
         }
         for (const auto& f : evolver_->forces()) m.active += f->swim_pressure(s, book_.start);
-        const SymTensor swim = swim_tensor_of(soft_log_sums(s, book_.start, swim_alpha_));
+        const SymTensor swim =
+            swim_tensor_of(soft_log_sums(s, book_.start, swim_alpha_, active_forces()));
         for (int c = 0; c < 6; ++c) m.active_tensor[c] = swim[c] / V;
         m.order = polar_order(s);
         m.msd = mean_squared_displacement(s, book_.start);
@@ -451,7 +478,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     // The same from the sums of every process's particles (collective): the formulas of
     // measured_here, rearranged so that each is a function of sums (SoftLogSums).
     Measured measured_shared() const {
-        const SoftLogSums<D> mine = soft_log_sums(state_, book_.start, swim_alpha_);
+        const SoftLogSums<D> mine =
+            soft_log_sums(state_, book_.start, swim_alpha_, active_forces());
         auto flat = mine.flat();
         o_.comm->sum(flat);
         const SoftLogSums<D> t = SoftLogSums<D>::from_flat(flat);
@@ -583,6 +611,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     std::array<bool, D> conserved_{};
     std::vector<double> species_count_; // of the whole system
     std::vector<double> swim_alpha_;
+    mutable std::vector<Vec<D>> active_forces_; // (reused at every log row)
     std::vector<double> term_values_; // add_term_values' scratch
     struct {
         double seconds = 0.0, communication_seconds = 0.0, bytes_sent = 0.0;

@@ -66,6 +66,7 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
     double bath_temperature(std::size_t s, std::size_t count) const override {
         return T_.at(s, count);
     }
+    double friction(std::size_t s, std::size_t count) const override { return gamma_.at(s, count); }
     const PerSpecies& temperature() const { return T_; }
     const PerSpecies& gamma() const { return gamma_; }
     std::uint64_t seed() const { return seed_; }

@@ -82,6 +82,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
     double bath_temperature(std::size_t s, std::size_t count) const override {
         return T_.at(s, count);
     }
+    double friction(std::size_t s, std::size_t count) const override { return gamma_.at(s, count); }
     // the first B half-kick reads the forces of the positions the step starts from
     bool needs_initial_forces() const override { return true; }
     const PerSpecies& temperature() const { return T_; }

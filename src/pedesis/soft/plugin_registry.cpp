@@ -181,7 +181,7 @@ std::vector<PluginInfo> core_rows() {
 const std::vector<PluginInfo>& plugin_catalogue() {
     static const std::vector<PluginInfo> catalogue = [] {
         std::vector<PluginInfo> all = core_rows();
-        for (auto more : {active_model_rows, external_field_rows, wall_rows})
+        for (auto more : {active_model_rows, active_ou_rows, external_field_rows, wall_rows})
             for (PluginInfo& info : more()) all.push_back(std::move(info));
         return all;
     }();

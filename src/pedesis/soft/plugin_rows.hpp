@@ -37,9 +37,11 @@ inline bool flag(const PluginSpec& spec, const char* key) {
 
 // The families beyond the pair potentials, ABP terms and integrators of
 // plugin_registry.cpp: chiral, run-and-tumble and Ornstein-Uhlenbeck activity and the
-// alignments (plugin_rows_active.cpp), gravity and traps (plugin_rows_fields.cpp),
-// walls and containers (plugin_rows_walls.cpp).
+// alignments (plugin_rows_active.cpp), active Ornstein-Uhlenbeck particles
+// (plugin_rows_active_ou.cpp), gravity and traps (plugin_rows_fields.cpp), walls and
+// containers (plugin_rows_walls.cpp).
 std::vector<PluginInfo> active_model_rows();
+std::vector<PluginInfo> active_ou_rows();
 std::vector<PluginInfo> external_field_rows();
 std::vector<PluginInfo> wall_rows();
 

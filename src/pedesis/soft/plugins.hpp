@@ -51,6 +51,12 @@ template <int D> class ForceTerm {
     // pressure: 0 for a passive term. (A run shared among processes sums the swim
     // pressure from it, soft_observables.hpp.)
     virtual double swim_force(std::size_t /*s*/, std::size_t /*count*/) const { return 0.0; }
+    // Active forces that are not a species' constant along the director (active_ou's
+    // gamma p_i), for the swim pressure's tensor and sums: adds the term's force on each
+    // owned particle i to out[i], making `out` owned() zero vectors first if it is empty.
+    // A term without such forces leaves `out` as it is (empty when no term has any, which
+    // the sums then skip at no cost).
+    virtual void add_active_forces(const SoftState<D>&, std::vector<Vec<D>>& /*out*/) const {}
 
     // Log columns of the term's own (a wall's pressure, a field's energy), by their names
     // in the quantity catalogue (observe/quantities.hpp), and their values at the current
@@ -90,6 +96,12 @@ template <int D> class Integrator {
     // The temperature of the bath it couples species s to (of `count` species), or NaN
     // for none (energy-conserving, or rotations only).
     virtual double bath_temperature(std::size_t /*s*/, std::size_t /*count*/) const {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    // The friction coefficient gamma with which it moves species s's positions (the drag
+    // -gamma v, or the mobility 1 / gamma), or NaN for none: what turns an active velocity
+    // into an active force (active_ou).
+    virtual double friction(std::size_t /*s*/, std::size_t /*count*/) const {
         return std::numeric_limits<double>::quiet_NaN();
     }
 };

@@ -1,30 +1,21 @@
 #pragma once
 // Self-propulsion of the ABP tutorial: F_i = alpha n_i along the particle's polarity.
 #include "pedesis/core/chunk_shares.hpp"
+#include "pedesis/soft/active_virial.hpp"
 #include "pedesis/soft/per_species.hpp"
 #include "pedesis/soft/plugins.hpp"
 
 namespace pedesis {
 
-// Swim (active) pressure (1 / (d V)) sum_i alpha_i n_i . (dr_i - dR), where dr_i is the
-// unwrapped displacement since `start` and dR its mean: the virial of the active forces,
-// which stays well defined in a periodic box. The mean is subtracted because a polar
-// flock drifts as a whole; without it the sum would grow without bound in the ordered
-// state. In steady state for free ABPs it tends to n alpha^2 / (gamma d (d-1) D_r)
-// (Takatori, Yan & Brady 2014). alpha[s] is the active force of species s.
+// Swim pressure of self-propulsion, F_i = alpha_i n_i (soft/active_virial.hpp). In steady
+// state for free ABPs it tends to n alpha^2 / (gamma d (d-1) D_r) (Takatori, Yan & Brady
+// 2014). alpha[s] is the active force of species s.
 template <int D>
 double active_pressure(const SoftState<D>& s, const std::vector<Vec<D>>& start,
                        const std::vector<double>& alpha) {
-    const std::size_t n = s.size();
-    if (n == 0) return 0.0;
-    Vec<D> drift{};
-    for (std::size_t i = 0; i < n; ++i) drift += s.unwrapped(i) - start[s.p.tag[i]];
-    drift *= 1.0 / static_cast<double>(n);
-    double sum = 0.0;
-    for (std::size_t i = 0; i < n; ++i)
-        sum +=
-            alpha[s.p.species[i]] * dot(s.director[i], s.unwrapped(i) - start[s.p.tag[i]] - drift);
-    return sum / (D * s.box.volume());
+    return active_virial(s, start, [&](std::size_t i, const Vec<D>& d) {
+        return alpha[s.p.species[i]] * dot(s.director[i], d);
+    });
 }
 
 template <int D> class SelfPropulsion final : public ForceTerm<D> {

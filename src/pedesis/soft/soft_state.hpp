@@ -23,6 +23,9 @@ template <int D> struct SoftState {
     std::vector<Vec<D>> force;        // total force of the current step
     std::vector<TorqueVec<D>> torque; // total torque of the current step
     std::vector<std::array<std::int32_t, D>> image;
+    // The active velocity p_i of active Ornstein-Uhlenbeck particles (soft/active_ou.hpp):
+    // empty without active_ou, and then no per-particle loop touches it.
+    std::vector<Vec<D>> active_velocity;
     std::uint64_t step = 0;
     double time = 0.0;
     // Under domain decomposition (soft/domain_decomposition.hpp) the last `ghosts`
@@ -59,6 +62,7 @@ template <int D> struct SoftState {
         f(force);
         f(torque);
         f(image);
+        if (!active_velocity.empty()) f(active_velocity);
     }
 
     // Keeps the particles i with keep[i] (keep.size() <= size()), in their order, and
