@@ -79,7 +79,7 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
         {"pressure_virial", "energy / volume", "pair virial sum r_ij . F_ij / (d V)", soft},
         {"pressure_active", "energy / volume",
          "swim pressure of the active forces, sum F_active,i . dr_i / (d V) (self_propulsion: "
-         "F_active = alpha n_i)",
+         "F_active = alpha n_i; active_ou: gamma p_i)",
          soft},
         {"pressure_xx", "energy / volume",
          "pressure tensor, diagonal component along x, from the same parts as pressure "
