@@ -8,7 +8,7 @@ runs shorter versions in under 2 minutes on 2 cores; the full suite takes under 
     python3 -m pedesis.validate --quick --out runs/validate
     pedesis validate --quick            # the same, through the CLI
 """
-from .cases import active, granular, hard, liquid
+from .cases import active, active_models, granular, hard, liquid
 from .checks import CaseError, CaseResult, Check
 
 # (name, function, runs in quick mode too); in this order in the table
@@ -22,6 +22,10 @@ CASES = (
     ("inelastic_mixture", granular.inelastic_mixture, True),
     ("free_abp", active.free_abp, True),
     ("mips", active.mips, True),
+    ("abp_walls", active_models.abp_walls, True),
+    ("abp_trap", active_models.abp_trap, True),
+    ("chiral_abp", active_models.chiral_abp, True),
+    ("run_and_tumble", active_models.run_and_tumble, True),
     ("lennard_jones", liquid.lennard_jones, True),
 )
 

@@ -51,16 +51,22 @@ progress = false
 
 
 def soft_run(dimension, dynamics, count, length, seed, steps, dt, log_every, snapshot_every,
-             forces="", integrators="", positions="random", radius=0.5, extra=""):
-    """A soft/active run (brownian, langevin, nve) in a periodic box: the [[force]] and
-    [[integrator]] tables as given, GSD frames every ``snapshot_every`` steps."""
+             forces="", integrators="", positions="random", radius=0.5, extra="",
+             boundary=None):
+    """A soft/active run (brownian, langevin, nve): the [[force]] and [[integrator]]
+    tables as given, GSD frames every ``snapshot_every`` steps. ``length`` is one edge or
+    a list of one per axis; ``boundary`` (a list of "periodic" / "wall" per axis) walls
+    axes, which then need a wall force; the default box is periodic."""
+    edges = (f"lengths = {[float(x) for x in length]!r}" if isinstance(length, (list, tuple))
+             else f"length = {length!r}")
+    walls = "" if boundary is None else f"boundary = {list(boundary)!r}\n".replace("'", '"')
     return f"""dimension = {dimension}
 dynamics = "{dynamics}"
 seed = {seed}
 
 [box]
-length = {length!r}
-
+{edges}
+{walls}
 [[species]]
 name = "A"
 count = {count}

@@ -115,3 +115,35 @@ def swim_pressure(t, dimension, density, alpha, gamma, d_r):
     tau = 1.0 / ((dimension - 1) * d_r)
     v0 = alpha / gamma
     return density * alpha * v0 * tau * (1.0 - np.exp(-np.asarray(t, dtype=float) / tau)) / dimension
+
+
+def chiral_abp_msd(t, d_t, v0, d_r, omega):
+    """Mean squared displacement of a free 2D chiral ABP (active angular velocity omega):
+    4 D_t t + (2 v0^2 / K) [D_r t - (D_r^2 - w^2) / K + e^(-D_r t) ((D_r^2 - w^2) cos wt
+    - 2 D_r w sin wt) / K], K = D_r^2 + w^2 (van Teeffelen & Lowen, PRE 78, 020101 (2008))."""
+    t = np.asarray(t, dtype=float)
+    k = d_r ** 2 + omega ** 2
+    c = d_r ** 2 - omega ** 2
+    wave = np.exp(-d_r * t) * (c * np.cos(omega * t) - 2.0 * d_r * omega * np.sin(omega * t))
+    return 4.0 * d_t * t + 2.0 * v0 ** 2 / k * (d_r * t - c / k + wave / k)
+
+
+def run_and_tumble_msd(t, dimension, d_t, v0, rate):
+    """Mean squared displacement of a free run-and-tumble particle (tumble rate lambda, a
+    new direction drawn uniformly): <v(t).v(0)> = v0^2 e^(-lambda t), so the ABP MSD with
+    (d - 1) D_r replaced by lambda: 2 d D_t t + 2 v0^2 / lambda^2 (lambda t - 1 +
+    e^(-lambda t))."""
+    return free_abp_msd(t, dimension, d_t, v0, rate / (dimension - 1))
+
+
+def trapped_abp_r2(dimension, d_t, v0, d_r, kappa):
+    """Stationary <r^2> of an ABP in an isotropic harmonic trap (kappa = mobility x
+    stiffness): d D_t / kappa + v0^2 / (kappa (kappa + (d - 1) D_r)) (the position is a
+    linear filter of the director, whose correlation decays at (d - 1) D_r)."""
+    return dimension * d_t / kappa + v0 ** 2 / (kappa * (kappa + (dimension - 1) * d_r))
+
+
+def active_wall_pressure(dimension, bulk_density, d_t, v0, d_r, mobility):
+    """Pressure of ideal ABPs on a torque-free wall of any stiffness: n_bulk (D_t + v0^2 /
+    (d (d - 1) D_r)) / mu (Solon et al., Nature Physics 11, 673 (2015))."""
+    return bulk_density * (d_t + v0 ** 2 / (dimension * (dimension - 1) * d_r)) / mobility
