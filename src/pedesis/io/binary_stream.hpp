@@ -77,20 +77,23 @@ inline void put_header(std::ostream& out, std::uint64_t magic, std::uint32_t ver
     put<std::int32_t>(out, dim);
 }
 
-// `engine` names the checkpoint kind in the message, e.g. "event".
-inline void get_header(std::istream& in, std::uint64_t magic, std::uint32_t version, int dim,
-                       const std::string& engine) {
+// `engine` names the checkpoint kind in the message, e.g. "event". Versions from `oldest`
+// (0: only `version`) to `version` are read; returns the file's.
+inline std::uint32_t get_header(std::istream& in, std::uint64_t magic, std::uint32_t version,
+                                int dim, const std::string& engine, std::uint32_t oldest = 0) {
     std::uint64_t m = 0;
     std::uint32_t v = 0;
     std::int32_t d = 0;
     get(in, m);
     if (m != magic) throw InputError("checkpoint: not a pedesis " + engine + " checkpoint");
     get(in, v);
-    if (v != version) throw InputError("checkpoint: unsupported version " + std::to_string(v));
+    if (v > version || v < (oldest ? oldest : version))
+        throw InputError("checkpoint: unsupported version " + std::to_string(v));
     get(in, d);
     if (d != dim)
         throw InputError("checkpoint: written for dimension " + std::to_string(d) +
                          ", config asks for " + std::to_string(dim));
+    return v;
 }
 
 inline void put(std::ostream& out, const std::vector<Species>& table) {

@@ -66,8 +66,11 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
         binary::get(in, word);
         if (word != soft_checkpoint_magic) throw InputError(foreign_checkpoint(word, soft_engine));
         in.seekg(-static_cast<std::streamoff>(sizeof word), std::ios::cur);
-        binary::get_header(in, soft_checkpoint_magic, soft_checkpoint_version, D,
-                           "soft-engine (brownian, langevin, nve)");
+        // (a version-3 file is this one without active velocities: runs before active_ou
+        // continue from theirs)
+        const std::uint32_t version =
+            binary::get_header(in, soft_checkpoint_magic, soft_checkpoint_version, D,
+                               "soft-engine (brownian, langevin, nve)", 3);
         binary::get(in, s.box);
         binary::get(in, s.p.species_table);
         const std::size_t n_species = s.p.species_table.size();
@@ -84,7 +87,8 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
         binary::get(in, book.sum_pressure);
         binary::get(in, book.sum_polar_order);
         binary::get(in, book.sum_temperature);
-        binary::get(in, s.active_velocity);
+        s.active_velocity.clear();
+        if (version >= 4) binary::get(in, s.active_velocity);
         file.finish();
         const std::size_t n = s.p.position.size();
         if (s.p.velocity.size() != n || s.p.tag.size() != n || s.p.species.size() != n ||

@@ -16,9 +16,12 @@
 #include "pedesis/soft/langevin.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 #include "pedesis/soft/polar_align.hpp"
+#include "pedesis/soft/run_and_tumble.hpp"
 #include "pedesis/soft/self_propulsion.hpp"
+#include "pedesis/soft/wall_force.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -89,11 +92,6 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                   std::optional<ParticleFile<D>> start)
         : c_(complete_from_initial_file<D>(c, start ? &*start : nullptr)), o_(o),
           console_(console) {
-        for (std::size_t a = 0; a < c_.periodic.size(); ++a)
-            if (!c_.periodic[a])
-                throw InputError((c_.boundary_where.empty() ? c_.file : c_.boundary_where) +
-                                 ": the " + c_.dynamics + " engine needs periodic axes (axis " +
-                                 std::to_string(a) + " is a wall)");
         const std::vector<Species> table = species_table(c_);
         if (!o_.restart) state_ = build_soft_state<D>(c_, start ? &*start : nullptr);
         start.reset(); // (the state holds the particles now)
@@ -116,6 +114,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             for (std::size_t i = 0; i < state_.size(); ++i)
                 book_.start[state_.p.tag[i]] = state_.unwrapped(i);
         }
+        check_walls(); // (a restored state has its box from here on)
         check_active_ou();
         read_observable_parameters(table);
         read_swim_forces();
@@ -398,6 +397,49 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     }
 
   private:
+    // A walled axis keeps its particles in by a wall force, and a planes wall needs a
+    // walled axis; two terms must not log the same column.
+    void check_walls() const {
+        bool planes = false;
+        for (const auto& f : evolver_->forces())
+            if (const auto* w = dynamic_cast<const WallForce<D>*>(f.get()))
+                planes = planes || w->shape() == WallShape::planes;
+        const std::string where = c_.boundary_where.empty() ? c_.file : c_.boundary_where;
+        if (!planes) {
+            for (int a = 0; a < D; ++a)
+                if (!state_.box.periodic(a))
+                    throw InputError(fmt::format(
+                        "{}: axis {} is a wall, and the {} engine keeps particles in by a wall "
+                        "force: add [[force]] name = \"wall\" (potential = \"wca\", \"lj93\" "
+                        "or \"harmonic\")",
+                        where, "xyz"[a], c_.dynamics));
+        } else if (!state_.box.any_wall()) {
+            throw InputError(c_.file + ": a wall of shape \"planes\" stands on the box's walled "
+                                       "faces, and every axis is periodic: set [box] boundary = "
+                                       "\"wall\" on an axis, or give the wall shape = \"sphere\" "
+                                       "or \"cylinder\"");
+        }
+        if (!o_.restart)
+            for (const auto& f : evolver_->forces())
+                if (const auto* w = dynamic_cast<const WallForce<D>*>(f.get());
+                    w && w->first_outside(state_) >= 0) {
+                    const auto i = static_cast<std::size_t>(w->first_outside(state_));
+                    throw InputError(fmt::format(
+                        "{}: particle {} starts on or beyond a wall (at {}), where a wca or lj93 "
+                        "wall cannot push it back: place the particles inside (a [[species]] "
+                        "region within the container), or use potential = \"harmonic\"",
+                        c_.file, state_.p.tag[i], fmt::join(state_.p.position[i].c, ", ")));
+                }
+        std::vector<std::string> seen;
+        for (const auto& f : evolver_->forces())
+            for (const std::string& column : f->log_columns(state_)) {
+                if (std::find(seen.begin(), seen.end(), column) != seen.end())
+                    throw InputError(c_.file + ": two " + f->name() + " forces would both log " +
+                                     column + ": give one [[force]] of each kind and shape");
+                seen.push_back(column);
+            }
+    }
+
     // The log's one-body quantities at this instant; the tensors are pressure parts.
     struct Measured {
         double order = 0.0, msd = 0.0, kinetic = 0.0, temperature = 0.0, ideal = 0.0, active = 0.0;
@@ -583,7 +625,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         for (const auto& f : evolver_->forces())
             if (dynamic_cast<const SelfPropulsion<D>*>(f.get())) return true;
         for (const auto& i : evolver_->integrators())
-            if (dynamic_cast<const BrownianRotationIntegrator<D>*>(i.get())) return true;
+            if (dynamic_cast<const BrownianRotationIntegrator<D>*>(i.get()) ||
+                dynamic_cast<const RunAndTumble<D>*>(i.get()))
+                return true;
         return false;
     }
 
@@ -612,7 +656,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     std::vector<double> species_count_; // of the whole system
     std::vector<double> swim_alpha_;
     mutable std::vector<Vec<D>> active_forces_; // (reused at every log row)
-    std::vector<double> term_values_; // add_term_values' scratch
+    std::vector<double> term_values_;           // add_term_values' scratch
     struct {
         double seconds = 0.0, communication_seconds = 0.0, bytes_sent = 0.0;
     } stepping_; // by this invocation

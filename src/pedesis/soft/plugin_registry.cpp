@@ -309,6 +309,17 @@ PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
     spec.name = name;
     spec.where = where;
     const PluginInfo& info = plugin_info(kind, name, where);
+    // (words first: a word given for a number says so before a missing number does)
+    for (auto& [key, word] : choices) {
+        const ChoiceInfo* choice = choice_info(info, key);
+        if (!choice && param_info(info, key))
+            throw InputError(where + ": " + key + ": must be a number, got '" + word + "'");
+        if (!choice)
+            throw InputError(where + ": " + kind_name(kind) + " '" + name + "' has no option '" +
+                             key + "'");
+        check_choice(*choice, word, where + ": " + key);
+        spec.choices[key] = word;
+    }
     for (const ParamInfo& p : info.params) {
         const auto it = given.find(p.key);
         if (it == given.end()) {
@@ -345,16 +356,6 @@ PluginSpec make_plugin_spec(PluginKind kind, const std::string& name,
             throw InputError(where + ": " + kind_name(kind) + " '" + name + "' has no option '" +
                              key + "'");
         spec.flags[key] = on;
-    }
-    for (auto& [key, word] : choices) {
-        const ChoiceInfo* choice = choice_info(info, key);
-        if (!choice && param_info(info, key))
-            throw InputError(where + ": " + key + ": must be a number, got '" + word + "'");
-        if (!choice)
-            throw InputError(where + ": " + kind_name(kind) + " '" + name + "' has no option '" +
-                             key + "'");
-        check_choice(*choice, word, where + ": " + key);
-        spec.choices[key] = word;
     }
     if (!info.pair_potential && (!pairs.empty() || mixing != "geometric"))
         throw InputError(where + ": " + name + " is not a pair potential: no pairs or mixing");
