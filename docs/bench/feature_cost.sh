@@ -53,7 +53,8 @@ variant() { # $1: name, $2: boundary, $3: extra tables
 variant walls '["wall", "periodic"]' "$rotation
 [[force]]
 name = \"wall\"
-potential = \"wca\""
+potential = \"harmonic\"
+k = 50.0"
 variant container '"periodic"' "$rotation
 [[force]]
 name = \"wall\"
@@ -81,17 +82,12 @@ variant nematic '"periodic"' "$rotation
 name = \"nematic_align\"
 J = 1.0
 a = 2.0"
-variant polar '"periodic"' "$rotation
-[[torque]]
-name = \"polar_align\"
-J = 1.0
-a = 2.0"
 seconds() {
     OMP_NUM_THREADS=1 "$bin" run "$dir/$1.toml" --out "$dir/out_$1" --threads 1 >/dev/null
     sed -n 's/.*"stepping_seconds": *\([0-9.e+-]*\).*/\1/p' "$dir/out_$1/summary.json"
 }
 echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
-for v in walls container gravity trap chiral tumble nematic polar; do
+for v in walls container gravity trap chiral tumble nematic; do
     ratios=""
     k=0
     while [ $k -lt "$pairs" ]; do
