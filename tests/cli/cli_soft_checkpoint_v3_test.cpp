@@ -1,0 +1,75 @@
+// A soft checkpoint of version 3 (written before active_ou added its active velocities,
+// version 4) still restores: a version-4 checkpoint of a run without active_ou is turned
+// into the version-3 file an older pedesis wrote (engine version 3, without the trailing
+// empty array of active velocities, envelope length and CRC redone), and the restart
+// from it must continue the run bit for bit, as from the version-4 file.
+#include "cli/cli_support.hpp"
+
+#include <zlib.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+namespace pedesis::test {
+namespace {
+
+std::string abp_config(int steps) {
+    return "dimension = 2\ndynamics = \"brownian\"\nseed = 8\n[initial]\nmin_distance = 1.0\n"
+           "[box]\nlengths = [20.0, 20.0]\n[[species]]\nname = \"A\"\ncount = 100\n"
+           "radius = 0.5\n[[force]]\nname = \"wca\"\nepsilon = 1.0\n"
+           "[[force]]\nname = \"self_propulsion\"\nalpha = 1.0\n"
+           "[[integrator]]\nname = \"brownian\"\nT = 0.1\ngamma = 1.0\n"
+           "[[integrator]]\nname = \"brownian_rotation\"\nT = 0.5\ngamma = 1.0\n"
+           "[run]\nsteps = " +
+           std::to_string(steps) +
+           "\ndt = 0.002\n[output]\nlog_every = 50\ncheckpoint_every = 200\n";
+}
+
+// The envelope (checkpoint_file.hpp): 8 bytes magic, 8 bytes payload length, payload,
+// CRC-32 of the payload and then of the first 16 bytes.
+std::string as_version_3(const std::string& file) {
+    std::uint64_t n = 0;
+    std::memcpy(&n, file.data() + 8, 8);
+    EXPECT_EQ(file.size(), 20 + n);
+    std::string payload = file.substr(16, n);
+    std::uint32_t version = 0;
+    std::memcpy(&version, payload.data() + 8, 4); // after the engine's 8-byte magic
+    EXPECT_EQ(version, 4u);
+    version = 3;
+    std::memcpy(payload.data() + 8, &version, 4);
+    std::uint64_t empty = 1;
+    std::memcpy(&empty, payload.data() + payload.size() - 8, 8);
+    EXPECT_EQ(empty, 0u) << "the last array (active velocities) should be empty";
+    payload.resize(payload.size() - 8);
+    std::string head = file.substr(0, 16);
+    const std::uint64_t shorter = payload.size();
+    std::memcpy(head.data() + 8, &shorter, 8);
+    uLong crc = crc32(0L, reinterpret_cast<const Bytef*>(payload.data()),
+                      static_cast<uInt>(payload.size()));
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(head.data()), 16);
+    const auto crc32bits = static_cast<std::uint32_t>(crc);
+    std::string out = head + payload;
+    out.append(reinterpret_cast<const char*>(&crc32bits), 4);
+    return out;
+}
+
+class SoftCheckpointVersion3 : public ScratchDir {};
+
+TEST_F(SoftCheckpointVersion3, RestoresAndContinuesBitForBit) {
+    write("full.toml", abp_config(400));
+    write("half.toml", abp_config(200));
+    ASSERT_EQ(run_pedesis("run full.toml --out full", dir, 120).exit_code, 0);
+    ASSERT_EQ(run_pedesis("run half.toml --out half", dir, 120).exit_code, 0);
+    write("old.bin", as_version_3(read("half/checkpoint.bin")));
+    const CliResult cont = run_pedesis("run full.toml --out cont --restart old.bin", dir, 120);
+    ASSERT_EQ(cont.exit_code, 0) << cont.output;
+    const std::string full = read("full/log.csv"), rest = read("cont/log.csv");
+    const std::string rows = rest.substr(rest.find('\n') + 1);
+    ASSERT_GT(rows.size(), 20u);
+    EXPECT_NE(full.find(rows), std::string::npos) << "continued:\n" << rest << "\nfull:\n" << full;
+}
+
+} // namespace
+} // namespace pedesis::test
