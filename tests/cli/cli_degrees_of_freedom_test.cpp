@@ -84,6 +84,21 @@ TEST_F(CliDegreesOfFreedom, SoftEngine) {
     expect_freedom("langevin", soft("langevin"), 2 * 36);
     expect_freedom("nve_active",
                    soft("nve", "[[force]]\nname = \"self_propulsion\"\nalpha = 1.0\n"), 2 * 36);
+    // a trap, gravity or a container holds no momentum constant; walls on one axis leave
+    // the other's
+    expect_freedom("nve_trap", soft("nve", "[[force]]\nname = \"harmonic_trap\"\nk = 0.1\n"),
+                   2 * 36);
+    expect_freedom("nve_gravity", soft("nve", "[[force]]\nname = \"gravity\"\nforce = 0.1\n"),
+                   2 * 36);
+    expect_freedom("nve_container",
+                   soft("nve", "[[force]]\nname = \"wall\"\nshape = \"sphere\"\n"
+                               "potential = \"harmonic\"\nk = 10.0\nradius = 15.0\n"),
+                   2 * 36);
+    std::string channel = soft("nve", "[[force]]\nname = \"wall\"\npotential = \"harmonic\"\n"
+                                      "k = 10.0\n");
+    channel.replace(channel.find("length = 20.0"), 13,
+                    "length = 20.0\nboundary = [\"wall\", \"periodic\"]");
+    expect_freedom("nve_channel", channel, 2 * 36 - 1);
 }
 
 TEST_F(CliDegreesOfFreedom, SummaryPrintsTheCount) {

@@ -72,6 +72,18 @@ TEST_F(SoftWalls, MisplacedKeysAreNamed) {
     expect_rejected(channel(harmonic_wall + harmonic_wall), {"would both log wall_pressure_x"});
 }
 
+// Random placement keeps centres one radius from the walls; a wca wall of a larger sigma
+// then starts particles deep in its repulsion. The blow-up says so, and what to change.
+TEST_F(SoftWalls, ABlowUpFromAStartInsideTheWallSaysSo) {
+    write("run.toml", channel("[[force]]\nname = \"wall\"\nsigma = 1.5\n"));
+    const CliResult r = run_pedesis("run run.toml --out out", dir, 120);
+    EXPECT_EQ(r.exit_code, 3) << r.output;
+    EXPECT_NE(r.output.find("Likely cause: the start. Particle "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("from a wall, inside the wca wall's core (1.5)"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("give the wall a smaller sigma"), std::string::npos) << r.output;
+}
+
 TEST_F(SoftWalls, ARunWithWallsContinuesFromItsCheckpointBitForBit) {
     write("full.toml", channel(harmonic_wall, "steps = 400"));
     write("half.toml", channel(harmonic_wall, "steps = 200"));

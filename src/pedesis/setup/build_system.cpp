@@ -146,8 +146,16 @@ std::vector<std::size_t> draw_species_velocities(const RunConfig& c, ParticleSto
 }
 
 // True if a self-propulsion term gives any species a non-zero force.
-bool self_propelled(const RunConfig& c) {
+// Whether a one-body force acts (a non-zero self_propulsion, gravity, a trap, active_ou's
+// active force, a container's wall): then no axis conserves momentum. (Planes walls act
+// along walled axes only, which the box already counts out.)
+bool one_body_forces(const RunConfig& c) {
     for (const auto& f : c.forces) {
+        if (f.name == "gravity" || f.name == "harmonic_trap" || f.name == "active_ou") return true;
+        if (f.name == "wall") {
+            const auto shape = f.choices.find("shape");
+            if (shape != f.choices.end() && shape->second != "planes") return true;
+        }
         if (f.name != "self_propulsion") continue;
         for (const auto& [key, param] : f.params) {
             if (param.uniform && *param.uniform != 0.0) return true;
@@ -348,7 +356,7 @@ ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box,
 
 Momentum momentum_of(const RunConfig& c) {
     if (c.dynamics == "event" || c.dynamics == "stepped") return Momentum::conserving;
-    if (c.dynamics == "nve" && !self_propelled(c)) return Momentum::conserving;
+    if (c.dynamics == "nve" && !one_body_forces(c)) return Momentum::conserving;
     return Momentum::not_conserving;
 }
 

@@ -61,6 +61,8 @@ StartFacts measure_start(const SoftState<D>& s, const NeighborList<D>& list,
         f.packing_core = core[most * n + most];
         f.packing_term = forces[whose[most * n + most]]->name();
     }
+    for (const auto& term : forces)
+        if (f.one_body.empty()) f.one_body = term->start_overlap(s);
     return f;
 }
 
@@ -80,6 +82,10 @@ std::string blow_up_cause(const StartFacts& start, std::uint64_t failed_step, do
             "apart ([initial] min_distance = {:g}, or a lattice), or take the first steps with "
             "a smaller dt",
             start.tag_a, start.tag_b, start.closest, start.core_term, start.core, dt, start.core);
+    if (start.measured && failed_step < start.step + start_steps && !start.one_body.empty())
+        return fmt::format(". Likely cause: the start. {}, and the force there is too strong for "
+                           "dt = {:g}",
+                           start.one_body, dt);
     return fmt::format("; reduce dt (now {:g})", dt);
 }
 

@@ -27,6 +27,7 @@ struct StartFacts {
     double packing = 0.0;
     std::string packing_term;
     double packing_core = 0.0; // of the most numerous species
+    std::string one_body;      // a one-body term's start_overlap (the first term's that has one)
 };
 
 // The facts above for the state as it is, its pairs taken from `list` (which must hold

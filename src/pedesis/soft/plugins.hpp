@@ -33,6 +33,10 @@ template <int D> class ForceTerm {
     virtual double core(const SoftState<D>&, std::size_t /*a*/, std::size_t /*b*/) const {
         return 0.0;
     }
+    // The same for a one-body term (a wall): the particle that starts deepest inside the
+    // term's core, said as a blow-up's message says it ("particle 7 began 0.3 from a
+    // wall, inside its sigma (1)"), with its fix; empty if none starts there.
+    virtual std::string start_overlap(const SoftState<D>&) const { return {}; }
     virtual void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const = 0;
     virtual void add_totals(const SoftState<D>&, const NeighborList<D>&, PairTotals&) const {}
     // The energy and virial beyond the cutoff of a homogeneous fluid of counts[s]

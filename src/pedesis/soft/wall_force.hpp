@@ -19,8 +19,11 @@
 #include "pedesis/soft/plugins.hpp"
 #include "pedesis/soft/polar_align.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -183,7 +186,56 @@ template <int D> class WallForce final : public ForceTerm<D> {
         return -1;
     }
 
+    // The particle that starts deepest inside a wca or lj93 wall's core (closer than the
+    // distance where its energy passes eps: sigma for wca, (2/15)^(1/6) sigma, its zero,
+    // for lj93), relative to that distance.
+    std::string start_overlap(const SoftState<D>& s) const override {
+        if (potential_ == WallPotential::harmonic) return {};
+        tabulate(s);
+        const double core_fraction =
+            potential_ == WallPotential::wca ? 1.0 : std::pow(2.0 / 15.0, 1.0 / 6.0);
+        double deepest = 1.0, distance = 0.0, core = 0.0;
+        std::size_t who = 0;
+        for (std::size_t i = 0; i < s.owned(); ++i) {
+            const double c = core_fraction * laws_[s.p.species[i]].sigma;
+            const double h = nearest_wall(s, s.p.position[i]);
+            if (h / c < deepest) {
+                deepest = h / c;
+                distance = h;
+                core = c;
+                who = i;
+            }
+        }
+        if (deepest >= 1.0) return {};
+        return "Particle " + std::to_string(s.p.tag[who]) + " began " + short_number(distance) +
+               " from a wall, inside the " + potential_name() + " wall's core (" +
+               short_number(core) +
+               "): place the particles at least that far from the walls (a [[species]] "
+               "region), or give the wall a smaller sigma";
+    }
+
   private:
+    static std::string short_number(double x) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", x);
+        return text;
+    }
+    std::string potential_name() const {
+        return potential_ == WallPotential::wca    ? "wca"
+               : potential_ == WallPotential::lj93 ? "lj93"
+                                                   : "harmonic";
+    }
+    // The distance from position r to the nearest wall surface of this force.
+    double nearest_wall(const SoftState<D>& s, const Vec<D>& r) const {
+        double h = std::numeric_limits<double>::infinity();
+        if (shape_.kind == WallShape::planes) {
+            for (int a = 0; a < D; ++a)
+                if (!s.box.periodic(a)) h = std::min({h, r[a] - s.box.lo(a), s.box.hi(a) - r[a]});
+            return h;
+        }
+        return shape_.radius - radial(s, r);
+    }
+
     // A container's outward displacement of position r from its centre (or axis).
     Vec<D> radial_vector(const SoftState<D>& s, const Vec<D>& r) const {
         Vec<D> d = s.box.minimum_image(r - shape_.centre);
