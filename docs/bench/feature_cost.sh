@@ -82,12 +82,17 @@ variant nematic '"periodic"' "$rotation
 name = \"nematic_align\"
 J = 1.0
 a = 2.0"
+variant aoup '"periodic"' "$rotation
+[[force]]
+name = \"active_ou\"
+tau = 1.0
+D_a = 0.5"
 seconds() {
     OMP_NUM_THREADS=1 "$bin" run "$dir/$1.toml" --out "$dir/out_$1" --threads 1 >/dev/null
     sed -n 's/.*"stepping_seconds": *\([0-9.e+-]*\).*/\1/p' "$dir/out_$1/summary.json"
 }
 echo "CPU: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
-for v in walls container gravity trap chiral tumble nematic; do
+for v in walls container gravity trap chiral tumble nematic aoup; do
     ratios=""
     k=0
     while [ $k -lt "$pairs" ]; do
