@@ -66,12 +66,13 @@ std::size_t occurrences(const std::string& text, const std::string& what) {
 
 class MpiRun : public ScratchDir {
   protected:
-    void expect_processes_follow_serial(int dimension);
+    // `extra`: more tables for the config (one-body forces)
+    void expect_processes_follow_serial(int dimension, const std::string& extra = "");
 };
 
-void MpiRun::expect_processes_follow_serial(int dimension) {
+void MpiRun::expect_processes_follow_serial(int dimension, const std::string& extra) {
     MpiRun& t = *this;
-    t.write("abp.toml", abp_config(dimension, 400));
+    t.write("abp.toml", abp_config(dimension, 400) + extra);
     const CliResult serial = run_pedesis("run abp.toml --out serial", t.dir, 120);
     ASSERT_EQ(serial.exit_code, 0) << serial.output;
     for (int p : {2, 3}) {
@@ -111,6 +112,16 @@ TEST_F(MpiRun, TwoAndThreeProcessesFollowTheSerialTrajectoryIn2D) {
 
 TEST_F(MpiRun, TwoAndThreeProcessesFollowTheSerialTrajectoryIn3D) {
     expect_processes_follow_serial(3);
+}
+
+// One-body forces (a container that starts with particles in its harmonic wall, gravity,
+// a trap) and their log columns (wall_pressure_sphere, gravity_energy, trap_energy:
+// sums over every process's particles) as on one process.
+TEST_F(MpiRun, ContainerGravityAndTrapFollowTheSerialRun) {
+    expect_processes_follow_serial(
+        2, "[[force]]\nname = \"wall\"\nshape = \"sphere\"\npotential = \"harmonic\"\n"
+           "k = 5.0\nradius = 12.5\n[[force]]\nname = \"gravity\"\nforce = 0.2\n"
+           "[[force]]\nname = \"harmonic_trap\"\nk = 0.05\ncentre = [1.0, -2.0]\n");
 }
 
 // Threads and processes combine: 2 processes of 2 OpenMP threads each give the
