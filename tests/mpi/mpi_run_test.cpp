@@ -292,6 +292,22 @@ TEST_F(MpiRun, ADomainThinnerThanTheInteractionRangeIsRefusedOnce) {
 // The error paths leave no process waiting for another (run_mpi's kill timer would
 // turn a deadlock into exit 137): each ends every process with the serial exit code and
 // one message.
+// Walls on an axis cannot be cut into periodic domains: one message, exit 2, naming the
+// way out.
+TEST_F(MpiRun, AWalledBoxIsRefusedOnceWithTheWayOut) {
+    std::string config =
+        abp_config(2, 10) + "[[force]]\nname = \"wall\"\npotential = \"harmonic\"\nk = 10.0\n";
+    config.replace(config.find("length = 24"), 11,
+                   "length = 24\nboundary = [\"wall\", \"periodic\"]");
+    write("walled.toml", config);
+    const CliResult r = run_mpi(2, "run walled.toml --out walled", dir, 120);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(occurrences(r.output, "pedesis: error:"), 1u) << r.output;
+    EXPECT_NE(r.output.find("a walled box runs on one process; start it without mpirun"),
+              std::string::npos)
+        << r.output;
+}
+
 TEST_F(MpiRun, BadConfigGivesOneMessageAndExitTwo) {
     std::string config = abp_config(2, 10);
     config.replace(config.find("polar_align"), 11, "polar_aline");

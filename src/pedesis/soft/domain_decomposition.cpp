@@ -102,7 +102,9 @@ DomainDecomposition<D>::DomainDecomposition(Communicator& comm, const Box<D>& bo
     for (int a = 0; a < D; ++a)
         if (!box.periodic(a))
             throw InputError("domain decomposition needs a periodic box (axis " +
-                             std::to_string(a) + " is a wall)");
+                             std::to_string(a) +
+                             " is a wall): a walled box runs on one process; start it without "
+                             "mpirun (a container wall in a periodic box runs on many)");
     grid_ = domain_grid<D>(comm.size(), box, range);
     int r = comm.rank();
     for (int a = 0; a < D; ++a) {
