@@ -5,7 +5,10 @@
 // its checkpoint bit for bit.
 #include "cli/cli_support.hpp"
 
+#include "pedesis/io/xyz_reader.hpp"
+
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace pedesis::test {
@@ -55,9 +58,11 @@ TEST_F(SoftWalls, PlanesNeedAWalledAxis) {
 }
 
 TEST_F(SoftWalls, AParticleOutsideAWcaContainerIsRefused) {
-    expect_rejected(channel("[[force]]\nname = \"wall\"\nshape = \"sphere\"\nradius = 3.0\n",
-                            "steps = 400", "\"periodic\""),
-                    {"starts on or beyond a wall", "region"});
+    // (random starts keep inside containers; a lattice fills the box)
+    std::string lattice = channel("[[force]]\nname = \"wall\"\nshape = \"sphere\"\nradius = 3.0\n",
+                                  "steps = 400", "\"periodic\"");
+    lattice.replace(lattice.find("radius = 0.5\n"), 13, "radius = 0.5\npositions = \"square\"\n");
+    expect_rejected(lattice, {"starts on or beyond a wall", "region"});
 }
 
 TEST_F(SoftWalls, MisplacedKeysAreNamed) {
@@ -72,16 +77,50 @@ TEST_F(SoftWalls, MisplacedKeysAreNamed) {
     expect_rejected(channel(harmonic_wall + harmonic_wall), {"would both log wall_pressure_x"});
 }
 
-// Random placement keeps centres one radius from the walls; a wca wall of a larger sigma
-// then starts particles deep in its repulsion. The blow-up says so, and what to change.
+// A start from a file may put a particle deep in a wca wall's repulsion (0.6 from the
+// wall, sigma 1.5): the blow-up says so, and what to change.
 TEST_F(SoftWalls, ABlowUpFromAStartInsideTheWallSaysSo) {
-    write("run.toml", channel("[[force]]\nname = \"wall\"\nsigma = 1.5\n"));
+    write("start.json", "{\"system\":{\"box\":{\"Lx\":16.0,\"Ly\":10.0},\"particles\":["
+                        "{\"id\":0,\"r\":[-7.4,0.0],\"n\":[1.0,0.0],\"radius\":0.5,\"type\":0},"
+                        "{\"id\":1,\"r\":[3.0,1.0],\"n\":[0.0,1.0],\"radius\":0.5,\"type\":0}]}}");
+    std::string config = channel("[[force]]\nname = \"wall\"\nsigma = 1.5\n");
+    config.replace(config.find("[initial]\n"), 10, "[initial]\nfile = \"start.json\"\n");
+    config.erase(config.find("[[species]]"), config.find("[[force]]") - config.find("[[species]]"));
+    write("run.toml", config);
     const CliResult r = run_pedesis("run run.toml --out out", dir, 120);
     EXPECT_EQ(r.exit_code, 3) << r.output;
-    EXPECT_NE(r.output.find("Likely cause: the start. Particle "), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("from a wall, inside the wca wall's core (1.5)"), std::string::npos)
+    EXPECT_NE(r.output.find("Likely cause: the start. Particle 0 began 0.6 from a wall, inside "
+                            "the wca wall's core (1.5)"),
+              std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("give the wall a smaller sigma"), std::string::npos) << r.output;
+}
+
+// A random start keeps centres a wca wall's sigma from walled faces (not just a radius)
+// and inside a container by as much: the runs start without a blow-up, and the start
+// frame has every centre where it should be.
+TEST_F(SoftWalls, RandomStartsKeepOutOfTheWallsCores) {
+    write("planes.toml", channel("[[force]]\nname = \"wall\"\nsigma = 1.5\n", "steps = 100") +
+                             "snapshot_every = 100\nformats = [\"xyz\"]\n");
+    const CliResult r = run_pedesis("run planes.toml --out planes", dir, 120);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const XyzReader planes(dir / "planes/trajectory.xyz");
+    const XyzFrame start = planes.frame(0);
+    ASSERT_EQ(start.size(), 60u);
+    for (std::size_t i = 0; i < start.size(); ++i)
+        EXPECT_LE(std::abs(start.position[i][0]), 8.0 - 1.5) << i;
+
+    std::string sphere = channel("[[force]]\nname = \"wall\"\nshape = \"sphere\"\n"
+                                 "radius = 4.9\nsigma = 1.0\n",
+                                 "steps = 100", "\"periodic\"") +
+                         "snapshot_every = 100\nformats = [\"xyz\"]\n";
+    sphere.replace(sphere.find("count = 60"), 10, "count = 20");
+    write("sphere.toml", sphere);
+    const CliResult c = run_pedesis("run sphere.toml --out sphere", dir, 120);
+    ASSERT_EQ(c.exit_code, 0) << c.output;
+    const XyzFrame inside = XyzReader(dir / "sphere/trajectory.xyz").frame(0);
+    for (std::size_t i = 0; i < inside.size(); ++i)
+        EXPECT_LE(std::hypot(inside.position[i][0], inside.position[i][1]), 4.9 - 1.0) << i;
 }
 
 TEST_F(SoftWalls, ARunWithWallsContinuesFromItsCheckpointBitForBit) {

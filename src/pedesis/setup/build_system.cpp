@@ -6,6 +6,7 @@
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/setup/random_placement.hpp"
 #include "pedesis/setup/velocities.hpp"
+#include "pedesis/setup/wall_margins.hpp"
 
 #include <fmt/format.h>
 
@@ -37,7 +38,8 @@ template <int D> struct CentreRegion {
 };
 
 template <int D>
-CentreRegion<D> centre_region(const RunConfig& c, const Box<D>& box, std::size_t s) {
+CentreRegion<D> centre_region(const RunConfig& c, const Box<D>& box, std::size_t s,
+                              const WallMargins<D>& walls) {
     const SpeciesConfig& sp = c.species[s];
     CentreRegion<D> reg;
     for (int a = 0; a < D; ++a) {
@@ -50,8 +52,10 @@ CentreRegion<D> centre_region(const RunConfig& c, const Box<D>& box, std::size_t
         const bool full = lo <= box.lo(a) && hi >= box.hi(a);
         reg.closed[a] = !(box.periodic(a) && full);
         if (reg.closed[a]) {
-            lo += sp.radius;
-            hi -= sp.radius;
+            // a walled face keeps centres its wall's margin away, a sub-region's edge a radius
+            const bool walled = !box.periodic(a);
+            lo = walled && lo <= box.lo(a) ? lo + walls.face[s] : lo + sp.radius;
+            hi = walled && hi >= box.hi(a) ? hi - walls.face[s] : hi - sp.radius;
         }
         if (!(lo <= hi))
             throw InputError(species_label(c, s) +
@@ -66,14 +70,15 @@ CentreRegion<D> centre_region(const RunConfig& c, const Box<D>& box, std::size_t
 
 template <int D>
 void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::size_t count,
-                   std::uint32_t first_tag, std::vector<Vec<D>>& pos, std::vector<double>& radii) {
+                   std::uint32_t first_tag, std::vector<Vec<D>>& pos, std::vector<double>& radii,
+                   const WallMargins<D>& walls) {
     const SpeciesConfig& sp = c.species[s];
     if (sp.positions == "point") {
         pos.push_back(to_vec<D>(*sp.point));
         radii.push_back(sp.radius);
         return;
     }
-    const CentreRegion<D> reg = centre_region(c, box, s);
+    const CentreRegion<D> reg = centre_region(c, box, s, walls);
     if (sp.positions == "random") {
         PlacementRequest<D> req;
         req.count = count;
@@ -86,6 +91,10 @@ void place_species(const RunConfig& c, const Box<D>& box, std::size_t s, std::si
         req.min_distance = c.min_distance;
         req.first_tag = first_tag;
         req.what = species_label(c, s);
+        if (!walls.containers.empty()) {
+            req.allowed = [&walls, &box, s](const Vec<D>& r) { return walls.inside(r, s, box); };
+            req.what += " (centres inside the container, as far from its wall as the wall's core)";
+        }
         place_randomly(pos, radii, box, req, c.seed);
         return;
     }
@@ -307,12 +316,13 @@ ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box,
                                  std::to_string(*c.species[s].count) + " but " + *c.initial_file +
                                  " holds " + std::to_string(per_type[s]));
     } else {
+        const WallMargins<D> walls = wall_margins<D>(c);
         for (std::size_t s = 0; s < c.species.size(); ++s) {
             if (!c.species[s].count)
                 throw InputError(species_label(c, s) +
                                  ": count is required (or give [initial] file)");
             const std::size_t n = *c.species[s].count;
-            place_species(c, box, s, n, static_cast<std::uint32_t>(pos.size()), pos, radii);
+            place_species(c, box, s, n, static_cast<std::uint32_t>(pos.size()), pos, radii, walls);
             species.insert(species.end(), n, static_cast<std::uint16_t>(s));
         }
         file_velocity.assign(pos.size(), std::nullopt);

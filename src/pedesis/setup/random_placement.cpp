@@ -92,6 +92,7 @@ void place_randomly(std::vector<Vec<D>>& pos, std::vector<double>& radii, const 
         for (int attempt = 0; attempt < max_attempts && !placed; ++attempt) {
             Vec<D> r;
             for (int a = 0; a < D; ++a) r[a] = rng.uniform(req.lo[a], req.hi[a]);
+            if (req.allowed && !req.allowed(r)) continue;
             bool free = true;
             cells.for_each_within(r, reach_cells, [&](std::uint32_t j) {
                 if (!free) return;

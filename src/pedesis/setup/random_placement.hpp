@@ -3,6 +3,7 @@
 #include "pedesis/core/box.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ template <int D> struct PlacementRequest {
     double min_distance = 0.0;   // centres at least max(r_i + r_j, min_distance) apart
     std::uint32_t first_tag = 0; // tags first_tag, first_tag + 1, ... key the random streams
     std::string what;            // for error messages, e.g. "species 'A'"
+    // Where else centres may not go (outside a container): empty for nowhere. (Set-up
+    // only: once per trial position.)
+    std::function<bool(const Vec<D>&)> allowed;
 };
 
 // Appends the new centres to `pos` (and their radii to `radii`), avoiding all
