@@ -8,6 +8,7 @@
 #include "pedesis/soft/brownian.hpp"
 #include "pedesis/soft/langevin.hpp"
 #include "pedesis/soft/pair_force.hpp"
+#include "pedesis/soft/plugin_registry.hpp"
 #include "pedesis/soft/polar_align.hpp"
 #include "pedesis/soft/self_propulsion.hpp"
 #include "pedesis/soft/velocity_verlet.hpp"
@@ -183,6 +184,67 @@ TEST(GpuStepper, SaysWhyNoGpuCanRun) {
         FAIL() << "a GPU stepper was made where none can run: " << why;
     } catch (const InputError& err) {
         EXPECT_NE(std::string(err.what()).find(why), std::string::npos) << err.what();
+    }
+}
+
+} // namespace
+
+namespace {
+
+// The terms of issue 50 (walls, fields, the active models beyond ABPs) have no device
+// kernels: each is refused by name, built as a config builds it; a walled box too.
+TEST(GpuModel, RefusesTheTermsItHasNoKernelsFor) {
+    const auto number = [](double v) {
+        PluginParam p;
+        p.uniform = v;
+        p.where = "test";
+        return p;
+    };
+    struct Case {
+        PluginKind kind;
+        const char* name;
+        std::map<std::string, PluginParam> params;
+        std::map<std::string, std::string> choices;
+    };
+    const std::vector<Case> cases = {
+        {PluginKind::force,
+         "wall",
+         {{"radius", number(12.0)}, {"k", number(1.0)}},
+         {{"shape", "sphere"}, {"potential", "harmonic"}}},
+        {PluginKind::force, "gravity", {{"force", number(0.1)}}, {}},
+        {PluginKind::force, "harmonic_trap", {{"k", number(0.1)}}, {}},
+        {PluginKind::force, "active_ou", {{"tau", number(1.0)}, {"D_a", number(1.0)}}, {}},
+        {PluginKind::torque, "active_torque", {{"torque", number(1.0)}}, {}},
+        {PluginKind::torque, "nematic_align", {{"J", number(1.0)}, {"a", number(1.0)}}, {}},
+        {PluginKind::torque, "velocity_align", {{"J", number(1.0)}, {"a", number(1.0)}}, {}},
+        {PluginKind::integrator, "run_and_tumble", {{"rate", number(1.0)}}, {}},
+    };
+    for (const Case& c : cases) {
+        auto s = test::random_soft_system<2>(4, 30.0, 0.5, 1);
+        Evolver<2> e(s, 0.5);
+        e.add_integrator(std::make_unique<BrownianIntegrator<2>>(0.1, 1.0, 1));
+        add_plugin(
+            e, make_plugin_spec(c.kind, c.name, c.params, "test", {}, {}, "geometric", c.choices),
+            s.p.species_table, 1);
+        try {
+            gpu_model(s, e);
+            ADD_FAILURE() << c.name << " was accepted";
+        } catch (const InputError& err) {
+            EXPECT_NE(std::string(err.what()).find(std::string("'") + c.name + "'"),
+                      std::string::npos)
+                << err.what();
+        }
+    }
+    auto walled = test::random_soft_system<2>(4, 30.0, 0.5, 1);
+    walled.box = Box<2>(Vec<2>{{30.0, 30.0}}, {false, true});
+    Evolver<2> e(walled, 0.5);
+    e.add_integrator(std::make_unique<BrownianIntegrator<2>>(0.1, 1.0, 1));
+    try {
+        gpu_model(walled, e);
+        ADD_FAILURE() << "a walled box was accepted";
+    } catch (const InputError& err) {
+        EXPECT_NE(std::string(err.what()).find("periodic boxes only"), std::string::npos)
+            << err.what();
     }
 }
 
