@@ -9,11 +9,12 @@ import time
 
 import numpy as np
 import pedesis
+from scipy.special import mathieu_a
 
 from pedesis import validate
 from pedesis.validate import __main__ as validate_main
 from pedesis.validate import configs, stats, theory
-from pedesis.validate.cases import liquid
+from pedesis.validate.cases import liquid, sedimentation
 from pedesis.validate.checks import CaseResult, Check
 
 
@@ -190,3 +191,57 @@ def test_list_gives_each_case_a_whole_first_sentence(capsys):
     for line in lines:
         assert line.count("(") == line.count(")"), line
     assert any("tail = true: U and P of the log include them)" in line for line in lines)
+
+
+def test_rotational_eigenvalue_is_mathieus():
+    # D_r g'' + a cos(theta) g = mu g is Mathieu's y'' + (A - 2 q cos 2z) y = 0 with
+    # theta = 2 z, A = -4 mu / D_r, q = -2 a / D_r; the top mu goes with the lowest
+    # characteristic value a_0(q) = a_0(-q): mu = -D_r a_0(2 a / D_r) / 4 (scipy's
+    # mathieu_a, by continued fractions, not the matrix)
+    for d_r, a in ((1.0, 1e-3), (1.0, 0.5), (0.3, 2.0), (2.0, 30.0)):
+        top = theory.rotational_top_eigenvalue(d_r, a)
+        assert abs(top + d_r * mathieu_a(0, 2.0 * a / d_r) / 4.0) < 1e-9 * max(1.0, abs(top))
+    # second order in a: a^2 / (2 D_r)
+    assert abs(theory.rotational_top_eigenvalue(2.0, 1e-2) - 1e-4 / 4.0) < 1e-9
+
+
+def test_active_sedimentation_rate_limits_and_root():
+    # passive: barometric w / T, whatever D_r
+    assert theory.active_sedimentation_rate(0.0, 1.0, 0.5, 0.5) == 1.0
+    # weak force: mu w / (D_t + v0^2 / (2 D_r)), here to 1e-3
+    weak = theory.active_sedimentation_rate(1.0, 1.0, 0.1, 0.01)
+    assert abs(weak / (0.01 / 0.6) - 1.0) < 1e-3
+    # mobility enters through mu w only
+    assert abs(theory.active_sedimentation_rate(1.0, 1.0, 0.1, 0.15, mobility=2.0)
+               - theory.active_sedimentation_rate(1.0, 1.0, 0.1, 0.3)) < 1e-12
+    # the C++ sedimentation test's point (v0 = 1, D_r = 1, D_t = 0.1, w = 0.3): 0.5475,
+    # 9 % above the first-order 0.5; the root solves the eigenproblem
+    rate = theory.active_sedimentation_rate(1.0, 1.0, 0.1, 0.3)
+    assert abs(rate - 0.5475) < 5e-4
+    top = -mathieu_a(0, 2.0 * rate) / 4.0
+    assert abs(top - rate * (0.3 - 0.1 * rate)) < 1e-10
+
+
+def test_aoup_msd_limits():
+    # ballistic start 2 d D_t t + d D_a t^2 / tau, diffusive end 2 d (D_t + D_a) (t - tau)
+    for d in (2, 3):
+        t = 1e-3
+        short = 2 * d * 0.01 * t + d * 0.5 * t * t / 2.0
+        assert abs(theory.aoup_msd(t, d, 0.01, 0.5, 2.0) / short - 1.0) < 1e-3
+        t = 200.0
+        assert abs(theory.aoup_msd(t, d, 0.01, 0.5, 2.0) - 2 * d * 0.51 * t + 2 * d * 0.5 * 2.0) < 1e-9
+
+
+def test_truncated_exponential_rate_recovers_a_known_rate():
+    # 200000 draws of e^(-1.3 h) seen on [0, 4): the rate within 4 standard errors
+    # (~1.3 / sqrt(200000 x 0.99) x 1.1)
+    h = np.random.default_rng(7).exponential(1.0 / 1.3, 200000)
+    h = h[h < 4.0]
+    assert abs(sedimentation.truncated_exponential_rate(h, 4.0) - 1.3) < 4 * 1.3 * 1.1 / np.sqrt(len(h))
+    # a window without a decaying profile is a CaseError, not a wrong number
+    try:
+        sedimentation.truncated_exponential_rate(np.array([3.0, 3.5]), 4.0)
+    except validate.CaseError:
+        pass
+    else:
+        raise AssertionError("a rising profile gave a rate")

@@ -8,7 +8,7 @@ runs shorter versions in under 2 minutes on 2 cores; the full suite takes under 
     python3 -m pedesis.validate --quick --out runs/validate
     pedesis validate --quick            # the same, through the CLI
 """
-from .cases import active, active_models, granular, hard, liquid
+from .cases import active, active_models, granular, hard, liquid, sedimentation
 from .checks import CaseError, CaseResult, Check
 
 # (name, function, runs in quick mode too); in this order in the table
@@ -26,6 +26,8 @@ CASES = (
     ("abp_trap", active_models.abp_trap, True),
     ("chiral_abp", active_models.chiral_abp, True),
     ("run_and_tumble", active_models.run_and_tumble, True),
+    ("aoup_msd", active_models.aoup_msd, True),
+    ("abp_sedimentation", sedimentation.abp_sedimentation, True),
     ("lennard_jones", liquid.lennard_jones, True),
 )
 

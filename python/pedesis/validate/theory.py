@@ -6,6 +6,7 @@ Each function names its source; docs/validation.md lists them with the cases.
 import math
 
 import numpy as np
+from scipy.linalg import eigh_tridiagonal
 from scipy.optimize import brentq
 
 # Reduced virial coefficients B_n / B_2^(n-1) of hard disks, n = 2..10 (Clisby & McCoy,
@@ -147,3 +148,41 @@ def active_wall_pressure(dimension, bulk_density, d_t, v0, d_r, mobility):
     """Pressure of ideal ABPs on a torque-free wall of any stiffness: n_bulk (D_t + v0^2 /
     (d (d - 1) D_r)) / mu (Solon et al., Nature Physics 11, 673 (2015))."""
     return bulk_density * (d_t + v0 ** 2 / (dimension * (dimension - 1) * d_r)) / mobility
+
+
+def aoup_msd(t, dimension, d_t, d_a, tau):
+    """Mean squared displacement of a free active Ornstein-Uhlenbeck particle (tau dp =
+    -p dt + sqrt(2 D_a) dW per axis, so <p_a(t) p_a(0)> = (D_a / tau) e^(-|t|/tau)):
+    2 d D_t t + 2 d D_a [t - tau (1 - e^(-t/tau))] (../shared/PHYSICS.md)."""
+    t = np.asarray(t, dtype=float)
+    return 2.0 * dimension * (d_t * t + d_a * (t - tau * (1.0 - np.exp(-t / tau))))
+
+
+def rotational_top_eigenvalue(d_r, a, modes=40):
+    """The largest eigenvalue of D_r d^2/dtheta^2 + a cos(theta) on 2 pi-periodic
+    functions (a Mathieu operator). In the Fourier basis e^(i m theta), m = -M..M, it is
+    the symmetric tridiagonal matrix with diagonal -D_r m^2 and off-diagonal a / 2; the
+    top eigenvector falls off like (a / D_r)^|m| / (m!)^2, so M = 40 is exact to
+    rounding for a / D_r up to ~100."""
+    m = np.arange(-modes, modes + 1, dtype=float)
+    top = eigh_tridiagonal(-d_r * m * m, np.full(2 * modes, 0.5 * a), eigvals_only=True,
+                           select="i", select_range=(2 * modes, 2 * modes))
+    return float(top[0])
+
+
+def active_sedimentation_rate(v0, d_r, d_t, weight, mobility=1.0):
+    """The far-field decay rate lambda of the density of dilute ideal 2D ABPs under a
+    force ``weight`` along -y, n(y) ~ e^(-lambda y): with P(y, theta) = e^(-lambda y)
+    g(theta) the stationary Fokker-Planck equation reads D_r g'' + lambda v0 cos(theta) g
+    = lambda (mu w - D_t lambda) g (theta from the upward axis), so lambda is the root in
+    (0, mu w / D_t) of rotational_top_eigenvalue(D_r, lambda v0) = lambda (mu w - D_t
+    lambda) (Enculescu & Stark, PRL 107, 058301 (2011)). It tends to mu w / (D_t +
+    v0^2 / (2 D_r)) for mu w << v0 and is the barometric mu w / D_t for v0 = 0."""
+    top_rate = mobility * weight / d_t
+    if v0 == 0.0:
+        return top_rate
+
+    def gap(rate):
+        return rotational_top_eigenvalue(d_r, rate * v0) - rate * (mobility * weight - d_t * rate)
+    # the gap is ~ -mu w lambda just above 0 and >= 0 at mu w / D_t (the eigenvalue is >= 0)
+    return brentq(gap, 1e-9 * top_rate, top_rate, xtol=1e-14 * top_rate)

@@ -1,6 +1,7 @@
 """Active models beyond free ABPs (issue 50), each against an exact result: ideal ABPs
 between walls (Solon et al.'s wall pressure), ABPs in a harmonic trap (<r^2>), and the
-free MSD of chiral ABPs and run-and-tumble particles."""
+free MSD of chiral ABPs, run-and-tumble particles and active Ornstein-Uhlenbeck
+particles."""
 import numpy as np
 
 from ...analyze import read_frames
@@ -116,16 +117,18 @@ def abp_trap(ctx):
     return CaseResult("abp_trap", "ABPs in a harmonic trap", ran, checks, plot)
 
 
-def _free_msd(ctx, case, extra_terms, reference, times, label):
-    """Runs free swimmers (2D, N = 20000, t = 10, frames every 0.5) with the given extra
-    [[torque]] / [[integrator]] tables and checks the MSD at ``times`` against
-    ``reference(t)``, each with its standard error over particles; returns the checks and
-    the curve."""
+def _free_msd(ctx, case, extra_terms, reference, times, label, dimension=2,
+              active=table("force", "self_propulsion", alpha=V0), prefix=""):
+    """Runs free swimmers (2D unless ``dimension``, N = 20000, t = 10, frames every 0.5)
+    driven by the ``active`` [[force]] tables, with the given extra [[torque]] /
+    [[integrator]] tables, and checks the MSD at ``times`` against ``reference(t)``, each
+    with its standard error over particles (``prefix`` opens their names); returns the
+    checks and the curve."""
     count, dt, steps, every = 20000, 0.01, 1000, 50
-    config = soft_run(2, "brownian", count, 400.0, 3, steps, dt, every, every,
-                      forces=table("force", "self_propulsion", alpha=V0),
+    config = soft_run(dimension, "brownian", count, 400.0 if dimension == 2 else 60.0, 3,
+                      steps, dt, every, every, forces=active,
                       integrators=_integrators(D_T) + extra_terms)
-    traj = read_frames(str(ctx.run(case, "2d", config)))
+    traj = read_frames(str(ctx.run(case, f"{dimension}d", config)))
     t = traj.steps * dt
     x = traj.unwrapped()
     dr2 = ((x - x[:1]) ** 2).sum(axis=2)
@@ -134,7 +137,7 @@ def _free_msd(ctx, case, extra_terms, reference, times, label):
         k = int(np.argmin(np.abs(t - when)))
         m, e = sample_mean(dr2[k])
         ref = float(reference(t[k]))
-        checks.append(Check.near(f"MSD at t = {t[k]:g}", m, e, ref, 0.03 * ref, label,
+        checks.append(Check.near(f"{prefix}MSD at t = {t[k]:g}", m, e, ref, 0.03 * ref, label,
                                  f"N = {count}: one particle's r^2 has a relative spread "
                                  f"~1, so ~{100 / np.sqrt(count):.1f} % error; the step's "
                                  "bias is O(dt) = 1 %; 3 %"))
@@ -183,3 +186,33 @@ def run_and_tumble(ctx):
     ran = f"2D run-and-tumble particles, N = 20000, v0 = 1, lambda = {rate}, D_t = {D_T}, t = 10"
     return CaseResult("run_and_tumble", "Run-and-tumble particles", ran, checks,
                       _msd_plot(curve, reference))
+
+
+def aoup_msd(ctx):
+    """Free active Ornstein-Uhlenbeck particles (active_ou, tau = 1, D_a = 0.5): the MSD
+    against 2 d D_t t + 2 d D_a [t - tau (1 - e^(-t/tau))] (2D; 2D and 3D in the full
+    suite)."""
+    tau, d_a = 1.0, 0.5
+    checks, curves = [], {}
+    for dimension in ctx.pick((2,), (2, 3)):
+        def reference(t, d=dimension):
+            return theory.aoup_msd(t, d, D_T, d_a, tau)
+        more, curves[dimension] = _free_msd(
+            ctx, "aoup_msd", "", reference, (0.5, 1.0, 3.0, 10.0),
+            "<p_a(t) p_a(0)> = (D_a / tau) e^(-t/tau) (exact)", dimension,
+            table("force", "active_ou", tau=tau, D_a=d_a), f"{dimension}D ")
+        checks += more
+
+    def plot(ax):
+        for dimension, curve in curves.items():
+            t, msd = curve
+            fine = np.linspace(0.0, t[-1], 300)
+            line, = ax.plot(fine, theory.aoup_msd(fine, dimension, D_T, d_a, tau),
+                            label=f"{dimension}D theory")
+            ax.plot(t, msd, "o", color=line.get_color(), label=f"{dimension}D pedesis")
+        ax.set(xlabel="time", ylabel="MSD")
+        ax.legend()
+
+    ran = (f"free AOUPs (brownian), N = 20000, tau = {tau}, D_a = {d_a}, D_t = {D_T}, dt = "
+           f"0.01, t = 10, {' and '.join(f'{d}D' for d in ctx.pick((2,), (2, 3)))}")
+    return CaseResult("aoup_msd", "Active Ornstein-Uhlenbeck particles", ran, checks, plot)
