@@ -13,6 +13,10 @@ Dynamics: :func:`msd` (FFT method), :func:`msd_direct` (the O(T^2) sum it must e
 (continuous paths for frames without image counts).
 Order: :func:`psi6` (2D bond order, global and per particle), :func:`steinhardt` (q4,
 q6 in 3D), :func:`clusters`.
+Transport: :func:`diffusion_coefficient` (from the MSD), :func:`green_kubo` and
+:func:`shear_viscosity` (from a flux, or a log's pressure tensor), and the kinetic theory
+they are compared with, :func:`enskog_transport`, :func:`chapman_enskog_dilute`,
+:func:`yeh_hummer`.
 Active matter: :func:`polar_order`, :func:`polar_correlation`, :func:`local_area_fraction`
 with :func:`histogram_peaks` and :func:`phase_fractions` (MIPS bimodality and the
 coexisting fractions), :func:`swim_pressure`.
@@ -32,10 +36,14 @@ from .order import clusters, psi6
 from .paths import unwrap
 from .steinhardt import steinhardt
 from .structure import rdf, structure_factor, structure_factor_from_rdf
+from .transport import diffusion_coefficient, green_kubo, shear_viscosity
+from .transport_theory import chapman_enskog_dilute, enskog_transport, yeh_hummer
 
 __all__ = [
     "Box", "Trajectory", "read_frames", "rdf", "structure_factor", "structure_factor_from_rdf",
     "msd", "msd_direct", "unwrap", "self_intermediate_scattering", "velocity_autocorrelation", "psi6",
     "clusters", "steinhardt", "polar_order", "polar_correlation", "local_area_fraction",
     "fraction_bins", "histogram_peaks", "phase_fractions", "swim_pressure",
+    "diffusion_coefficient", "green_kubo", "shear_viscosity", "enskog_transport",
+    "chapman_enskog_dilute", "yeh_hummer",
 ]

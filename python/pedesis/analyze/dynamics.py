@@ -25,6 +25,12 @@ def msd(positions, box=None):
     more than half the extent of the positions along an axis); see paths.check_unwrapped.
     """
     check_unwrapped(positions, box, "msd")
+    return msd_of_paths(positions)
+
+
+def msd_of_paths(positions):
+    """msd without the check that the positions are paths (for callers that made them
+    paths, or that check the whole series once before taking its parts)."""
     x = np.asarray(positions)
     T, N = x.shape[0], x.shape[1]
     out = np.zeros(T)

@@ -9,6 +9,10 @@ import numpy as np
 from scipy.linalg import eigh_tridiagonal
 from scipy.optimize import brentq
 
+# (the transport coefficients of hard particles live with the analysis functions they are
+# compared with; validation cases take them from here with the rest)
+from ..analyze.transport_theory import chapman_enskog_dilute, enskog_transport, yeh_hummer  # noqa: F401
+
 # Reduced virial coefficients B_n / B_2^(n-1) of hard disks, n = 2..10 (Clisby & McCoy,
 # J. Stat. Phys. 122, 15 (2006), table 1; n = 3, 4 exact).
 HARD_DISK_VIRIAL = (1.0, 0.78200443, 0.53223180, 0.33355604, 0.1988425, 0.1148728, 0.0649930,
