@@ -1,10 +1,11 @@
 """python3 -m pedesis.analyze KIND RUN_DIR [--out FILE]: the figures of `pedesis analyze`
-(speed, thermo, msd, order, structure, bond_order, clusters; docs/analyze.md). Bad input: one line on stderr, exit 2."""
+(speed, thermo, msd, order, structure, bond_order, clusters, transport; docs/analyze.md).
+Bad input: one line on stderr, exit 2."""
 import importlib
 import os
 import sys
 
-KINDS = ("speed", "thermo", "msd", "order", "structure", "bond_order", "clusters")
+KINDS = ("speed", "thermo", "msd", "order", "structure", "bond_order", "clusters", "transport")
 
 
 def main(argv):

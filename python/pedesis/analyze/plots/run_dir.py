@@ -152,11 +152,7 @@ def read_log(path):
         hint = (f" ({part.name} exists: the run is still going, or was killed)"
                 if part.exists() else "")
         raise InputError(f"{path}: missing{hint}")
-    try:
-        with path.open(newline="") as f:
-            rows = list(csv.reader(f))
-    except (OSError, UnicodeDecodeError, csv.Error) as e:
-        raise InputError(f"{path}: cannot be read as CSV: {e}") from None
+    rows = read_csv_rows(path)
     if not rows or not rows[0]:
         raise InputError(f"{path}: empty (no header line)")
     # (no column is required here: [log] quantities chooses them; Run.log checks a
@@ -180,6 +176,15 @@ def read_log(path):
         raise InputError(f"{path}: has a header but no rows")
     table = np.array(data, dtype=float)
     return {name: table[:, k] for k, name in enumerate(header)}
+
+
+def read_csv_rows(path):
+    """The rows of a CSV file as lists of strings; its faults as InputError naming it."""
+    try:
+        with path.open(newline="") as f:
+            return list(csv.reader(f))
+    except (OSError, UnicodeDecodeError, csv.Error) as e:
+        raise InputError(f"{path}: cannot be read as CSV: {e}") from None
 
 
 def _is_number(text):
