@@ -93,8 +93,10 @@ def green_kubo(flux, dt, volume, temperature, blocks=8, remove_drift=False):
     for b in range(blocks):
         part = j[b * length:(b + 1) * length]
         moment = np.concatenate([np.zeros((1, part.shape[1])), np.cumsum(part, axis=0)]) * dt
-        # each component a one-dimensional path, averaged as msd averages particles
-        curves.append(msd_of_paths(moment[:, :, None]) / bridge)
+        # each component a one-dimensional path, averaged as msd averages particles; (one
+        # block with remove_drift: the whole span's increment is 0 by construction, 0/0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            curves.append(msd_of_paths(moment[:, :, None]) / bridge)
     result = _fit_blocks(np.array(curves), dt, scale)
     lags, mean = result.pop("msd")
     result["running"] = (lags, scale * np.gradient(mean, lags))
