@@ -31,15 +31,13 @@ def wrapped_walk(L=5.0, T=200, N=30, seed=1):
     return x, np.mod(x, L)
 
 
-def test_unwrapped_of_an_event_run_refuses_and_unwrap_follows_the_paths(tmp_path, run_cli):
-    # the event engine writes image counts of 0: positions + 0 * L were returned as
-    # "unwrapped" and their MSD levelled off near L^2/6
+def test_unwrapped_of_an_event_run_follows_the_paths_as_unwrap_does(tmp_path, run_cli):
+    # the event engine counts box crossings (it wrote image counts of 0 once, and
+    # positions + 0 * L passed for unwrapped, with an MSD levelling off near L^2/6)
     (tmp_path / "ev.toml").write_text(EVENT)
     run_cli("run", tmp_path / "ev.toml", "--out", tmp_path / "ev")
     traj = pa.read_frames(tmp_path / "ev")
-    assert not traj.images.any()
-    with pytest.raises(ValueError, match="no image counts.*pa.unwrap"):
-        traj.unwrapped()
+    assert traj.images.any()
     with pytest.raises(ValueError, match="look like wrapped positions"):
         pa.msd(traj.positions)
     paths = pa.unwrap(traj.positions, traj.box)
@@ -49,6 +47,13 @@ def test_unwrapped_of_an_event_run_refuses_and_unwrap_follows_the_paths(tmp_path
     np.testing.assert_allclose(traj.box.minimum_image(paths - traj.positions), 0.0, atol=1e-4)
     assert np.ptp(paths) > 8.0
     assert pa.msd(paths, traj.box) == pytest.approx(pa.msd_direct(paths), rel=1e-9, abs=1e-9)
+    # the engine's own counts give the same paths (float32 positions in the file)
+    unwrapped = traj.unwrapped()
+    np.testing.assert_allclose(unwrapped - unwrapped[0], paths - paths[0], atol=1e-4)
+    # and the log's msd column is their mean squared displacement from the first frame
+    log = np.genfromtxt(tmp_path / "ev" / "log.csv", delimiter=",", names=True)
+    last = float(np.sum((unwrapped[-1] - unwrapped[0]) ** 2, axis=-1).mean())
+    assert log["msd"][-1] == pytest.approx(last, rel=1e-5)
 
 
 def test_unwrapped_of_frames_whose_images_miss_a_crossing_refuses(tmp_path):

@@ -28,8 +28,8 @@ class Trajectory:
     directors: object = None
     diameters: object = None
     times: object = None
-    # False where the engine that wrote the frames does not track box crossings (the
-    # event and stepped engines write image counts of 0); None where nothing says
+    # False where the frames' writer does not track box crossings (image counts of 0
+    # that mean nothing); None where nothing says
     images_tracked: object = None
     source: str = "frames"  # the run directory or file, for messages
 
@@ -100,9 +100,9 @@ def read_frames(source, frames=None):
     flags = (first.log or {}).get("pedesis/periodic")  # the file's own walls come first
     if flags is not None:
         periodic = tuple(bool(p) for p in np.ravel(flags)[:d])
-    # the event and stepped engines store image counts of 0: they do not track crossings
-    tracked = None if config is None else config.get("dynamics", "event") not in ("event",
-                                                                                  "stepped")
+    # every engine counts box crossings (a frame written before the event and stepped
+    # engines did stores 0: check_images then finds the jumps)
+    tracked = None if config is None else True
     box = Box(tuple(first.configuration.box[:d]), periodic)
     pos = np.stack([s.particles.position[:, :d] for s in snaps]).astype(float)
     img = np.stack([s.particles.image[:, :d] for s in snaps]).astype(float)

@@ -92,13 +92,18 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
               << " from every wall)";
             throw InputError(m.str());
         }
-        box_.wrap(p_.position[i]);
+        image_.push_back(image_shift<D>(box_.wrap(p_.position[i])));
     }
     // Storage along a space-filling curve, so that a particle's neighbours lie in nearby
     // cache lines: events come in no spatial order, and at 10^6 particles a neighbour
     // stored far away costs a miss per array in every prediction. Only a fresh start is
     // sorted; a restored engine keeps its order and so continues bit for bit.
-    p_.apply_order(space_filling_order(box_, p_.position, p_.tag, 2.0 * max_radius));
+    const std::vector<std::uint32_t> order =
+        space_filling_order(box_, p_.position, p_.tag, 2.0 * max_radius);
+    p_.apply_order(order);
+    std::vector<std::array<std::int32_t, D>> images(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) images[k] = image_[order[k]];
+    image_.swap(images);
 
     take_flights(std::vector<double>(p_.size(), 0.0), std::vector<std::uint32_t>(p_.size(), 0),
                  std::vector<std::uint16_t>(p_.size(), 0));
@@ -225,7 +230,7 @@ template <int D> void EventEngine<D>::schedule_growth_step() {
 template <int D> void EventEngine<D>::growth_step(bool full) {
     for (std::uint32_t i = 0; i < size(); ++i) {
         advance(i);
-        box_.wrap(f_[i].x);
+        wrap_flight(i);
     }
     ++growth_.steps;
     if (pressure_window_full() && now_ > window_time_) {
@@ -596,9 +601,13 @@ template <int D> void EventEngine<D>::resum_kinetic_energy() {
 // rows are cache misses: only the rows of partners that leave or join are touched
 // (the rebuilt row and a joining partner's row end as a full rebuild would leave them;
 // a staying partner's row keeps its order, which matters only for exactly tied events).
+template <int D> void EventEngine<D>::wrap_flight(std::uint32_t i) {
+    wrap_counting<D>(box_, f_[i].x, image_[i]);
+}
+
 template <int D> void EventEngine<D>::rebuild_list(std::uint32_t i) {
     advance(i);
-    box_.wrap(f_[i].x);
+    wrap_flight(i);
     CellList<D>& grid = grids_[class_of_[f_[i].species]];
     grid.remove(i);
     ev_[i].centre = f_[i].x;
@@ -736,6 +745,13 @@ template <int D> Vec<D> EventEngine<D>::position_now(std::size_t i) const {
     return r;
 }
 
+template <int D> std::array<std::int32_t, D> EventEngine<D>::image_now(std::size_t i) const {
+    Vec<D> r = f_[i].x + f_[i].v * (now_ - f_[i].t);
+    std::array<std::int32_t, D> image = image_shift<D>(box_.wrap(r));
+    for (int a = 0; a < D; ++a) image[a] += image_[i][a];
+    return image;
+}
+
 template <int D>
 void EventEngine<D>::take_flights(const std::vector<double>& t,
                                   const std::vector<std::uint32_t>& counts,
@@ -759,7 +775,15 @@ template <int D> const ParticleStore<D>& EventEngine<D>::lazy_particles() const 
     return p_;
 }
 
-template <int D> ParticleStore<D> EventEngine<D>::snapshot() const {
+template <int D> std::vector<Vec<D>> EventEngine<D>::unwrapped_now() const {
+    std::vector<Vec<D>> u(size());
+    for (std::size_t i = 0; i < size(); ++i)
+        u[i] = unwrapped<D>(box_, f_[i].x + f_[i].v * (now_ - f_[i].t), image_[i]);
+    return u;
+}
+
+template <int D>
+ParticleStore<D> EventEngine<D>::snapshot(std::vector<std::array<std::int32_t, D>>* images) const {
     ParticleStore<D> s;
     s.tag = p_.tag;
     s.species = p_.species;
@@ -769,6 +793,10 @@ template <int D> ParticleStore<D> EventEngine<D>::snapshot() const {
     for (std::size_t i = 0; i < size(); ++i) {
         s.position[i] = position_now(i);
         s.velocity[i] = f_[i].v;
+    }
+    if (images) {
+        images->resize(size());
+        for (std::size_t i = 0; i < size(); ++i) (*images)[i] = image_now(i);
     }
     for (std::size_t k = 0; k < radius_.size(); ++k) s.species_table[k].radius = radius_now(k);
     return s;
@@ -836,15 +864,16 @@ template <int D> std::size_t EventEngine<D>::memory_bytes() const {
     auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
     // (the lazy copies of positions and velocities only while an observer holds them)
     return bytes(f_) + bytes(p_.position) + bytes(p_.velocity) + bytes(p_.tag) + bytes(p_.species) +
-           bytes(ev_) + bytes(last_collision_) + bytes(nbr_) + grids_memory() +
+           bytes(ev_) + bytes(image_) + bytes(last_collision_) + bytes(nbr_) + grids_memory() +
            queue_.memory_bytes();
 }
 
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" in memory order
 // 2: one cell list per size class; 3: growth state; 4: the collision virial's
-// off-diagonal components
-constexpr std::uint32_t checkpoint_version = 4;
+// off-diagonal components; 5: image counts (version 4 is read with none crossed)
+constexpr std::uint32_t checkpoint_version = 5;
+constexpr std::uint32_t oldest_checkpoint_version = 4;
 } // namespace
 
 template <int D> void EventEngine<D>::save(std::ostream& out) const {
@@ -909,11 +938,13 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, row_lengths);
     put(out, nbr_);
     for (const auto& grid : grids_) grid.save([&](const auto& v) { put(out, v); });
+    put(out, image_);
 }
 
 template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const EventParams& params) {
     using binary::get;
-    binary::get_header(in, checkpoint_magic, checkpoint_version, D, "event");
+    const std::uint32_t version = binary::get_header(in, checkpoint_magic, checkpoint_version, D,
+                                                     "event", oldest_checkpoint_version);
     validate(params);
     EventEngine e;
     e.params_ = params;
@@ -1004,6 +1035,12 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     e.take_flights(flight_times, collision_counts, row_lengths);
     e.make_grids();
     for (auto& grid : e.grids_) grid.load([&](auto& v) { get(in, v); });
+    if (version >= 5) {
+        get(in, e.image_);
+        if (e.image_.size() != n) throw InputError("checkpoint: corrupt image counts");
+    } else {
+        e.image_.assign(n, {});
+    }
     e.ev_.resize(n);
     for (std::size_t i = 0; i < n; ++i) e.ev_[i] = {centres[i], partners[i], counts[i]};
     e.queue_.build(times);

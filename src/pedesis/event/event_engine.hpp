@@ -18,6 +18,7 @@
 //   collisions have passed.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/collision_counters.hpp"
+#include "pedesis/core/image_count.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_queue.hpp"
 #include "pedesis/event/flight.hpp"
@@ -91,8 +92,14 @@ template <int D> class EventEngine {
 
     // Position of particle i (storage index) at the current time, wrapped into the box.
     Vec<D> position_now(std::size_t i) const;
-    // All particles at the current time, wrapped, in storage order.
-    ParticleStore<D> snapshot() const;
+    // The periodic boxes particle i has crossed by the current time (the soft engine's
+    // meaning: its unwrapped position is position_now(i) + image * L).
+    std::array<std::int32_t, D> image_now(std::size_t i) const;
+    // Every particle's unwrapped position now, in storage order.
+    std::vector<Vec<D>> unwrapped_now() const;
+    // All particles at the current time, wrapped, in storage order; with `images`, their
+    // image counts too.
+    ParticleStore<D> snapshot(std::vector<std::array<std::int32_t, D>>* images = nullptr) const;
     // Particle data whose velocities, tags and species are current (positions are not:
     // each is at the particle's own time): copies the engine fills at each call and keeps
     // (48 bytes per particle in 3D).
@@ -132,6 +139,8 @@ template <int D> class EventEngine {
     void process_pair(std::uint32_t i, std::uint32_t j);
     void process_wall(std::uint32_t i, std::int32_t code);
     void rebuild_list(std::uint32_t i);
+    // Wraps f_[i].x into the box and counts the boxes crossed in image_[i].
+    void wrap_flight(std::uint32_t i);
     void resum_kinetic_energy();
     void check_particle_overlap(std::uint32_t i, double rel_tol) const;
     // Contact distance at the last growth step (the lists' reference; all times
@@ -204,6 +213,9 @@ template <int D> class EventEngine {
         std::uint32_t count;
     };
     std::vector<ListAndEvent> ev_;
+    // Per particle: the periodic boxes crossed up to its flight's position f_[i].x (apart
+    // from the record: touched only when a particle is wrapped, at its list rebuilds).
+    std::vector<std::array<std::int32_t, D>> image_;
     std::vector<double> last_collision_; // only with the TC model
 
     std::uint32_t stride_ = 0; // neighbour slots per particle

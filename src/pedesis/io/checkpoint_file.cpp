@@ -186,6 +186,11 @@ CheckpointReader::CheckpointReader(const std::filesystem::path& path) : name_(pa
     in_.seekg(static_cast<std::streamoff>(head));
 }
 
+bool CheckpointReader::has_more() {
+    const auto at = in_.tellg();
+    return at >= 0 && static_cast<std::uint64_t>(at) < end_;
+}
+
 void CheckpointReader::finish() {
     const auto at = in_.tellg();
     if (at < 0 || static_cast<std::uint64_t>(at) != end_)

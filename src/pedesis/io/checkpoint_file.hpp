@@ -52,6 +52,8 @@ class CheckpointReader {
     std::istream& in() { return in_; }
     // InputError unless the payload was read exactly to its end.
     void finish();
+    // Whether the payload goes on: a later version's fields after the ones read so far.
+    bool has_more();
 
   private:
     std::string name_;

@@ -75,7 +75,7 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
          "time",
          "stepped"},
         {"polar_order", "1", "|sum n_i| / N: 0 for random directors, 1 when aligned", soft},
-        {"msd", "length^2", "mean squared displacement since step 0 (unwrapped)", soft},
+        {"msd", "length^2", "mean squared displacement since the start (unwrapped)", all},
         {"pressure_virial", "energy / volume", "pair virial sum r_ij . F_ij / (d V)", soft},
         {"pressure_active", "energy / volume",
          "swim pressure of the active forces, sum F_active,i . dr_i / (d V) (self_propulsion: "

@@ -57,6 +57,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
                 measure_kinetics(engine_->lazy_particles(), box, hard_particle_dynamics));
             record_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
+        this->keep_msd_origin(engine_->unwrapped_now(), engine_->time());
         growing_ = c_.growth_rate > 0;
         const std::size_t n = engine_->size();
         t_end_ = c_.stop_time.value_or(std::numeric_limits<double>::infinity());
@@ -92,8 +93,9 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     }
 
     Frame<D> frame() override {
-        snapshot_ = engine_->snapshot();
-        return frame_of(snapshot_, engine_->box(), engine_->time(), step());
+        snapshot_ = engine_->snapshot(&images_);
+        return Frame<D>{engine_->box(), snapshot_, engine_->time(), step(),
+                        nullptr,        nullptr,   &images_};
     }
 
     void save_checkpoint(const std::filesystem::path& path) override {
@@ -110,7 +112,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     void measure(std::vector<double>& values) override {
         const auto& e = *engine_;
         const HardMeasurement m =
-            out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters(), values);
+            out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters(), msd(), values);
         values.push_back(static_cast<double>(e.counters().list_rebuilds));
         if (growing_) values.insert(values.end(), {e.packing_fraction(), e.growth().last_pressure});
         progress(m.temperature, m.pressure, m.has_pressure);
@@ -131,6 +133,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         const auto& e = *engine_;
         nlohmann::json j = out_.summary(e.lazy_particles(), e.box(), e.time(), e.counters());
         j["cpu_kernels"] = simd_name(simd_level());
+        j["msd"] = msd();
         if (growing_) {
             const auto& g = e.growth();
             j["growth"] = {{"growing", g.growing},
@@ -178,6 +181,11 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     }
 
   private:
+    double msd() const {
+        return mean_squared_displacement(engine_->lazy_particles(), engine_->unwrapped_now(),
+                                         record_.start);
+    }
+
     // The stop condition a restored state meets already (the clock within the rounding of
     // Simulation's time limit), or null.
     const char* stop_met() const {
@@ -232,7 +240,8 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     std::unique_ptr<EventEngine<D>> engine_;
     StopLimits limits_;
     double t_end_ = std::numeric_limits<double>::infinity();
-    ParticleStore<D> snapshot_; // the positions of the last frame, all at one instant
+    ParticleStore<D> snapshot_;         // the positions of the last frame, all at one instant
+    std::vector<ImageCount<D>> images_; // and their image counts
     std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
     std::optional<std::chrono::steady_clock::time_point> last_progress_;
     std::uint64_t collisions_start_ = 0;

@@ -45,7 +45,7 @@ std::unique_ptr<Engine> load_hard_checkpoint(const std::filesystem::path& path, 
         binary::get(in, word);
         if (word != magic) throw InputError(foreign_checkpoint(word, engine));
         auto e = std::make_unique<Engine>(Engine::load(in, params));
-        s.load(in);
+        s.load(in, file.has_more());
         file.finish();
         // the event engine keeps each particle at its own last event: not wrapped
         check_restored_particles(particles_of(*e), e->box(), false);

@@ -35,6 +35,17 @@ template <int D> class HardRunEngine : public RunEngine<D> {
     }
 
   protected:
+    // The MSD's origin: the unwrapped positions of a fresh start, or of the restart from a
+    // checkpoint written before image counts (which the console is told).
+    void keep_msd_origin(std::vector<Vec<D>> unwrapped, double t) {
+        if (!record_.start.empty()) return;
+        record_.start = std::move(unwrapped);
+        if (o_.restart)
+            console_ << "pedesis: the checkpoint predates image counts: the msd counts from its "
+                        "time, t = "
+                     << t << "\n";
+    }
+
     // Builds the engine from the config's particles; an engine's refusal ("particle 3:
     // speed above 1e100") names the file the particles came from.
     template <class Make> auto with_source(Make make) const {

@@ -19,6 +19,9 @@ namespace pedesis {
 
 namespace {
 
+// What follows the speed histogram in a checkpoint's run record: 1, the MSD's origin.
+constexpr std::uint32_t record_extension = 1;
+
 // Which definition the run-averaged pressure uses, for the printed summary.
 template <int D> const char* pressure_method(const Box<D>& box) {
     bool wall = false, periodic = false;
@@ -39,9 +42,11 @@ template <int D> void HardRunRecord<D>::save(std::ostream& out) const {
     binary::put(out, last_counters);
     binary::put(out, frames);
     histogram.save(out);
+    binary::put<std::uint32_t>(out, record_extension);
+    binary::put(out, start);
 }
 
-template <int D> void HardRunRecord<D>::load(std::istream& in) {
+template <int D> void HardRunRecord<D>::load(std::istream& in, bool extended) {
     binary::get(in, initial_kinetic);
     binary::get(in, integral_T_dt);
     binary::get(in, last_log_time);
@@ -51,6 +56,26 @@ template <int D> void HardRunRecord<D>::load(std::istream& in) {
     binary::get(in, last_counters);
     binary::get(in, frames);
     histogram.load(in);
+    start.clear();
+    if (!extended) return;
+    std::uint32_t extension = 0;
+    binary::get(in, extension);
+    if (extension != record_extension)
+        throw InputError("checkpoint: unknown run record extension " + std::to_string(extension));
+    binary::get(in, start);
+}
+
+template <int D>
+double mean_squared_displacement(const ParticleStore<D>& p, const std::vector<Vec<D>>& unwrapped,
+                                 const std::vector<Vec<D>>& start) {
+    double sum = 0.0;
+    std::size_t mobile = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        if (std::isinf(p.mass(i))) continue;
+        sum += norm2(unwrapped[i] - start[i]);
+        ++mobile;
+    }
+    return mobile ? sum / static_cast<double>(mobile) : 0.0;
 }
 
 template <int D> std::vector<std::string> HardRunOutput<D>::log_columns() const {
@@ -70,12 +95,13 @@ template <int D> std::vector<std::string> HardRunOutput<D>::log_columns() const 
     for (int slot : sym_slots<D>()) c.push_back(std::string("pressure_") + sym_suffix(slot));
     c.push_back("compressibility");
     c.push_back("mean_free_time");
+    c.push_back("msd");
     return c;
 }
 
 template <int D>
 HardMeasurement HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, double t,
-                                          const EventCounters<D>& counters,
+                                          const EventCounters<D>& counters, double msd,
                                           std::vector<double>& values) {
     HardMeasurement m;
     m.kinetics = measure_kinetics(p, box, hard_particle_dynamics);
@@ -102,7 +128,7 @@ HardMeasurement HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D
                              : std::numeric_limits<double>::infinity();
     values.insert(values.end(), {dt > 0 ? P : 0.0, P_ideal});
     for (int slot : sym_slots<D>()) values.push_back(tensor[slot]);
-    values.insert(values.end(), {dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft});
+    values.insert(values.end(), {dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft, msd});
     if (c_.histogram_start && t >= *c_.histogram_start) record_.histogram.add(p);
     record_.last_log_time = t;
     record_.last_temperature = T;
@@ -234,6 +260,10 @@ template std::string box_text(const Box<2>&);
 template std::string box_text(const Box<3>&);
 template double packing_fraction(const ParticleStore<2>&, const Box<2>&);
 template double packing_fraction(const ParticleStore<3>&, const Box<3>&);
+template double mean_squared_displacement(const ParticleStore<2>&, const std::vector<Vec<2>>&,
+                                          const std::vector<Vec<2>>&);
+template double mean_squared_displacement(const ParticleStore<3>&, const std::vector<Vec<3>>&,
+                                          const std::vector<Vec<3>>&);
 template void check_checkpoint_matches(const std::vector<Species>&, const Box<2>&,
                                        const RunConfig&);
 template void check_checkpoint_matches(const std::vector<Species>&, const Box<3>&,

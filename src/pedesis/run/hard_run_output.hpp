@@ -35,6 +35,9 @@ template <int D> struct HardRunRecord {
     EventCounters<D> last_counters{};
     std::uint64_t frames = 0;
     SpeedHistogram histogram;
+    // Unwrapped positions at t = 0 in the engine's storage order: the MSD's origin. (A
+    // checkpoint written before image counts had none: the origin is then the restart.)
+    std::vector<Vec<D>> start;
 
     // the kinetic state at t = 0 of a fresh run
     void start_from(const SpeciesKinetics& k) {
@@ -49,8 +52,15 @@ template <int D> struct HardRunRecord {
         return m;
     }
     void save(std::ostream& out) const;
-    void load(std::istream& in);
+    // `extended`: the fields after the histogram are there (checkpoints since issue 51).
+    void load(std::istream& in, bool extended);
 };
+
+// The mean over the mobile particles (finite mass) of |r(t) - r(0)|^2, from unwrapped
+// positions in storage order.
+template <int D>
+double mean_squared_displacement(const ParticleStore<D>& p, const std::vector<Vec<D>>& unwrapped,
+                                 const std::vector<Vec<D>>& start);
 
 // What a measurement of the shared log columns gives the engines besides the values.
 struct HardMeasurement {
@@ -70,8 +80,10 @@ template <int D> class HardRunOutput {
 
     // Measures those columns at time t (velocities of p must be current), appending their
     // values; samples the speed histogram if asked, and moves the record on.
+    // msd: the mean squared displacement since t = 0, for its column.
     HardMeasurement measure(const ParticleStore<D>& p, const Box<D>& box, double t,
-                            const EventCounters<D>& counters, std::vector<double>& values);
+                            const EventCounters<D>& counters, double msd,
+                            std::vector<double>& values);
 
     // speed_histogram.csv from the samples, plus `final_state` when the histogram is of
     // the final state only. Not in the record, so a continued run does not count it twice.

@@ -86,6 +86,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
             record_.start_from(measure_kinetics(engine_->particles(), box, hard_particle_dynamics));
             record_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
+        this->keep_msd_origin(unwrapped_now(), engine_->time());
         if (c_.stop_collisions_per_particle)
             collision_limit_ = static_cast<std::uint64_t>(
                 std::ceil(*c_.stop_collisions_per_particle * static_cast<double>(engine_->size())));
@@ -107,7 +108,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
 
     Frame<D> frame() override {
         const auto& e = *engine_;
-        return frame_of(e.particles(), e.box(), e.time(), e.steps());
+        return Frame<D>{e.box(), e.particles(), e.time(), e.steps(), nullptr, nullptr, &e.images()};
     }
 
     void save_checkpoint(const std::filesystem::path& path) override {
@@ -123,7 +124,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
     void measure(std::vector<double>& values) override {
         const auto& e = *engine_;
         const HardMeasurement m =
-            out_.measure(e.particles(), e.box(), e.time(), e.counters(), values);
+            out_.measure(e.particles(), e.box(), e.time(), e.counters(), msd(), values);
         double sum_v2 = 0.0, sum_v = 0.0;
         for (std::size_t i = 0; i < e.size(); ++i) {
             if (std::isinf(e.particles().mass(i))) continue;
@@ -164,6 +165,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
         nlohmann::json j = out_.summary(e.particles(), e.box(), e.time(), e.counters());
         const auto C = e.counters().pair_collisions;
         j["dynamics"] = "stepped";
+        j["msd"] = msd();
         j["dt"] = e.dt();
         j["steps"] = e.steps();
         j["max_move"] = c_.max_move;
@@ -192,6 +194,14 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
     }
 
   private:
+    std::vector<Vec<D>> unwrapped_now() const {
+        const auto& e = *engine_;
+        return unwrapped_positions<D>(e.box(), e.particles().position, e.images());
+    }
+    double msd() const {
+        return mean_squared_displacement(engine_->particles(), unwrapped_now(), record_.start);
+    }
+
     // The first stop condition of [run] that the engine has met, or nullptr.
     const char* stop_reason() const {
         const auto& e = *engine_;

@@ -75,8 +75,9 @@ SteppedEngine<D>::SteppedEngine(ParticleStore<D> particles, const Box<D>& box,
                 "{} lies outside the walls (centre must be at least its radius {} from every "
                 "wall)",
                 tag_name(p_.tag[i]), r));
-        box_.wrap(p_.position[i]);
     }
+    image_.assign(p_.size(), {});
+    for (std::size_t i = 0; i < p_.size(); ++i) wrap_counting<D>(box_, p_.position[i], image_[i]);
     setup();
     check_no_overlap(1e-10);
 }
@@ -145,7 +146,7 @@ template <int D> void SteppedEngine<D>::step() {
     const auto n = static_cast<std::uint32_t>(p_.size());
     for (std::uint32_t i = 0; i < n; ++i) {
         p_.position[i] += p_.velocity[i] * dt_;
-        if (any_periodic_) box_.wrap(p_.position[i]);
+        if (any_periodic_) wrap_counting<D>(box_, p_.position[i], image_[i]);
         segment_start_[i] = 0.0;
         events_[i] = 0;
     }
@@ -284,7 +285,7 @@ template <int D> void SteppedEngine<D>::bounce(const Event& e) {
 // Bookkeeping after an event of particle i at `when`: a new segment, a new version of
 // its events, its cell.
 template <int D> void SteppedEngine<D>::moved(std::uint32_t i, double when) {
-    if (any_periodic_) box_.wrap(p_.position[i]);
+    if (any_periodic_) wrap_counting<D>(box_, p_.position[i], image_[i]);
     segment_start_[i] = when;
     ++events_[i];
     cells_.remove(i);
@@ -323,8 +324,10 @@ template <int D> void SteppedEngine<D>::check_no_overlap(double rel_tol) const {
 
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x5054535344455045ull; // "EPEDSSTP" in memory order
-// 2: the collision virial's off-diagonal components
-constexpr std::uint32_t checkpoint_version = 2;
+// 2: the collision virial's off-diagonal components; 3: image counts (version 2 is read
+// with none crossed)
+constexpr std::uint32_t checkpoint_version = 3;
+constexpr std::uint32_t oldest_checkpoint_version = 2;
 } // namespace
 
 template <int D> void SteppedEngine<D>::save(std::ostream& out) const {
@@ -342,12 +345,14 @@ template <int D> void SteppedEngine<D>::save(std::ostream& out) const {
     put(out, p_.velocity);
     put(out, p_.tag);
     put(out, p_.species);
+    put(out, image_);
 }
 
 template <int D>
 SteppedEngine<D> SteppedEngine<D>::load(std::istream& in, const SteppedParams& params) {
     using binary::get;
-    binary::get_header(in, checkpoint_magic, checkpoint_version, D, "stepped");
+    const std::uint32_t version = binary::get_header(in, checkpoint_magic, checkpoint_version, D,
+                                                     "stepped", oldest_checkpoint_version);
     validate(params);
     SteppedEngine e;
     e.params_ = params;
@@ -365,9 +370,11 @@ SteppedEngine<D> SteppedEngine<D>::load(std::istream& in, const SteppedParams& p
     get(in, e.p_.velocity);
     get(in, e.p_.tag);
     get(in, e.p_.species);
+    if (version >= 3) get(in, e.image_);
     const std::size_t n = e.p_.position.size();
+    if (version < 3) e.image_.assign(n, {});
     if (n == 0 || e.p_.velocity.size() != n || e.p_.tag.size() != n || e.p_.species.size() != n ||
-        e.step_base_ > e.step_)
+        e.image_.size() != n || e.step_base_ > e.step_)
         throw InputError("checkpoint: inconsistent array sizes (corrupt file)");
     for (auto s : e.p_.species)
         if (s >= ns) throw InputError("checkpoint: corrupt species index");

@@ -29,6 +29,7 @@
 // and momentum too apart from what the walls take, to rounding.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/collision_counters.hpp"
+#include "pedesis/core/image_count.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
@@ -72,6 +73,8 @@ template <int D> class SteppedEngine {
     const Box<D>& box() const { return box_; }
     // positions are those at time(), inside the walls and wrapped on periodic axes
     const ParticleStore<D>& particles() const { return p_; }
+    // the periodic boxes each particle has crossed (unwrapped: position + image * L)
+    const std::vector<ImageCount<D>>& images() const { return image_; }
     const EventCounters<D>& counters() const { return counters_; }
     const SteppedStats& stats() const { return stats_; }
     std::size_t size() const { return p_.size(); }
@@ -130,6 +133,7 @@ template <int D> class SteppedEngine {
     }
 
     ParticleStore<D> p_;
+    std::vector<ImageCount<D>> image_;
     Box<D> box_;
     SteppedParams params_;
     double dt_ = 0.0;

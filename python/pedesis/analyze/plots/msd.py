@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Mean squared displacement of a soft/active run (log.csv's msd column) against the
-exact MSD of free active Brownian particles with the run's parameters:
+"""Mean squared displacement of a run (log.csv's msd column); for a brownian or langevin
+run, against the exact MSD of free active Brownian particles with its parameters:
 
     MSD(t) = 2 d D_t t + 2 v0^2 tau^2 (t/tau - 1 + exp(-t/tau)),  tau = 1/((d-1) D_r),
 
@@ -107,10 +107,9 @@ def main():
     out = a.out
     log_path = run.path / "log.csv"
     elsewhere = None if run.soft else (
-        f"the MSD is logged by soft/active runs only (dynamics brownian, langevin or nve; "
-        f"this run's dynamics is '{run.dynamics}'; its frames carry no image counts: from "
-        "frames written often enough, pa.msd(pa.unwrap(traj.positions, traj.box)) in "
-        "Python, docs/analyze.md)")
+        f"this '{run.dynamics}' run was made before event and stepped runs logged the MSD; "
+        "run it again, or from frames written often enough, "
+        "pa.msd(pa.unwrap(traj.positions, traj.box)) in Python, docs/analyze.md")
     log = run.log(("time", "msd"), "msd", elsewhere)
     keep = (log["time"] > 0) & (log["msd"] > 0)
     if not keep.any():
@@ -149,8 +148,10 @@ def main():
         ax_ratio.axhline(1.0, color="k", lw=1)
         ax_ratio.set_ylabel("measured / reference")
     else:
-        ax.plot([], [], " ", label=f"no reference curve: '{run.dynamics}' dynamics has no "
-                                   "friction, so no free-ABP diffusion")
+        why = ("hard particles: their D is measured by [transport]"
+               if run.dynamics in ("event", "stepped") else
+               f"'{run.dynamics}' dynamics has no friction, so no free-ABP diffusion")
+        ax.plot([], [], " ", label=f"no reference curve: {why}")
         ax_ratio.set_visible(False)
         ax.tick_params(labelbottom=True)
         ax.set_xlabel("time t [time]")
