@@ -151,14 +151,16 @@ TEST(HardImageCounts, SteppedGasPathsStayContinuousThroughCollisions) {
     EXPECT_GT(crossings, 50u);
 }
 
-// A version-5 event checkpoint ends with the image counts (a u64 count and n D int32):
-// without them, and with version 4, it is the file an older pedesis wrote.
+// A version-5 event checkpoint (version-3 stepped) ends with the image counts (a u64
+// count and n D int32), a flag and the flux moments: without them, and with the version
+// before, it is the file an older pedesis wrote.
+constexpr std::size_t moments_bytes = 1 + sizeof(FluxMoments<3>);
 std::string older_version(std::string bytes, std::uint32_t version, std::size_t n) {
     std::uint32_t v = 0;
     std::memcpy(&v, bytes.data() + 8, 4);
     EXPECT_EQ(v, version + 1);
     std::memcpy(bytes.data() + 8, &version, 4);
-    const std::size_t tail = 8 + n * 3 * sizeof(std::int32_t);
+    const std::size_t tail = 8 + n * 3 * sizeof(std::int32_t) + moments_bytes;
     std::uint64_t count = 0;
     std::memcpy(&count, bytes.data() + bytes.size() - tail, 8);
     EXPECT_EQ(count, n);
@@ -225,10 +227,10 @@ TEST(HardImageCounts, ACheckpointWithCorruptCountsIsRefused) {
     std::ostringstream out;
     e.save(out);
     std::string bytes = out.str();
-    const std::size_t tail = 8 + p.size() * 3 * sizeof(std::int32_t);
+    const std::size_t tail = 8 + p.size() * 3 * sizeof(std::int32_t) + moments_bytes;
     const std::uint64_t wrong = p.size() - 1;
     std::memcpy(bytes.data() + bytes.size() - tail, &wrong, 8);
-    bytes.resize(bytes.size() - 12);
+    bytes.resize(bytes.size() - moments_bytes - 12);
     std::istringstream in(bytes);
     EXPECT_THROW(EventEngine<3>::load(in, EventParams{}), InputError);
 }

@@ -544,11 +544,16 @@ template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_
         last_collision_[i] = last_collision_[j] = now_;
     }
     const std::size_t si = f_[i].species, sj = f_[j].species;
+    const Vec<D> vi0 = f_[i].v, vj0 = f_[j].v;
     const PairImpulse res =
         growth_.growing ? collide_growing_pair(f_[i].v, f_[j].v, n, inv_mass_[si], inv_mass_[sj],
                                                xi, radius_rate_[si] + radius_rate_[sj])
                         : collide_pair(f_[i].v, f_[j].v, n, inv_mass_[si], inv_mass_[sj], xi);
     add_collision_virial(counters_, res.impulse, n, dr);
+    if (moments_on_) [[unlikely]] {
+        moments_.advance(now_);
+        moments_.collision(mass_of(si), vi0, f_[i].v, mass_of(sj), vj0, f_[j].v, dr);
+    }
     kinetic_ += res.energy_change;
     if (kinetic_ < 0.5 * kinetic_exact_) resum_kinetic_energy();
     counters_.energy_lost -= res.energy_change;
@@ -585,6 +590,20 @@ template <int D> void EventEngine<D>::process_wall(std::uint32_t i, std::int32_t
     counters_.energy_lost += lost;
     ++counters_.wall_collisions;
     ++f_[i].count;
+}
+
+template <int D> void EventEngine<D>::track_flux_moments() {
+    if (moments_on_) return;
+    moments_ = FluxMoments<D>{};
+    moments_.t = now_;
+    for (std::size_t i = 0; i < size(); ++i) moments_.count(mass_of(f_[i].species), f_[i].v, 1.0);
+    moments_on_ = true;
+}
+
+template <int D> FluxMoments<D> EventEngine<D>::flux_moments() const {
+    FluxMoments<D> m = moments_;
+    m.advance(now_);
+    return m;
 }
 
 // The running kinetic energy carries a rounding error of order 1e-16 of the energy it
@@ -871,7 +890,8 @@ template <int D> std::size_t EventEngine<D>::memory_bytes() const {
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" in memory order
 // 2: one cell list per size class; 3: growth state; 4: the collision virial's
-// off-diagonal components; 5: image counts (version 4 is read with none crossed)
+// off-diagonal components; 5: image counts and the flux moments (version 4 is read with
+// none crossed and no moments)
 constexpr std::uint32_t checkpoint_version = 5;
 constexpr std::uint32_t oldest_checkpoint_version = 4;
 } // namespace
@@ -939,6 +959,8 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, nbr_);
     for (const auto& grid : grids_) grid.save([&](const auto& v) { put(out, v); });
     put(out, image_);
+    put<std::uint8_t>(out, moments_on_);
+    put(out, moments_);
 }
 
 template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const EventParams& params) {
@@ -1038,6 +1060,11 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     if (version >= 5) {
         get(in, e.image_);
         if (e.image_.size() != n) throw InputError("checkpoint: corrupt image counts");
+        std::uint8_t on = 0;
+        get(in, on);
+        if (on > 1) throw InputError("checkpoint: corrupt flux moments");
+        e.moments_on_ = on != 0;
+        get(in, e.moments_);
     } else {
         e.image_.assign(n, {});
     }

@@ -18,6 +18,7 @@
 //   collisions have passed.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/collision_counters.hpp"
+#include "pedesis/core/flux_moments.hpp"
 #include "pedesis/core/image_count.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/event/event_queue.hpp"
@@ -83,6 +84,12 @@ template <int D> class EventEngine {
     void set_restitution(double xi);
     void set_wall_restitution(double xi);
     const EventCounters<D>& counters() const { return counters_; }
+    // From now on, keeps the running integrals of the Helfand moments (core/flux_moments.hpp)
+    // for [transport]: a few multiplications per collision. Idempotent.
+    void track_flux_moments();
+    bool tracks_flux_moments() const { return moments_on_; }
+    // Those integrals carried to the current time (G's collisional part is counters().virial).
+    FluxMoments<D> flux_moments() const;
     double kinetic_energy() const { return kinetic_; }
     std::size_t size() const { return f_.size(); }
     double skin() const { return skin_; }
@@ -217,6 +224,11 @@ template <int D> class EventEngine {
     // from the record: touched only when a particle is wrapped, at its list rebuilds).
     std::vector<std::array<std::int32_t, D>> image_;
     std::vector<double> last_collision_; // only with the TC model
+    FluxMoments<D> moments_;
+    bool moments_on_ = false;
+    double mass_of(std::size_t species) const {
+        return inv_mass_[species] > 0.0 ? 1.0 / inv_mass_[species] : 0.0; // obstacles: none
+    }
 
     std::uint32_t stride_ = 0; // neighbour slots per particle
     std::vector<std::uint32_t> nbr_;

@@ -255,6 +255,11 @@ template <int D> void SteppedEngine<D>::collide(const Event& e) {
     p_.position[i] += (p_.velocity[i] - vi0) * back;
     p_.position[j] += (p_.velocity[j] - vj0) * back;
     add_collision_virial(counters_, imp.impulse, n, dr);
+    if (moments_on_) [[unlikely]] {
+        moments_.advance(time() + e.when); // (step_ counts the steps before this one)
+        moments_.collision(mass_of(p_.species[i]), vi0, p_.velocity[i], mass_of(p_.species[j]), vj0,
+                           p_.velocity[j], dr);
+    }
     ++counters_.pair_collisions;
     if (e.late) ++stats_.late_collisions;
     moved(i, e.when);
@@ -263,6 +268,21 @@ template <int D> void SteppedEngine<D>::collide(const Event& e) {
     find_wall_crossing(j);
     find_overlaps_of(i, i);
     find_overlaps_of(j, i);
+}
+
+template <int D> void SteppedEngine<D>::track_flux_moments() {
+    if (moments_on_) return;
+    moments_ = FluxMoments<D>{};
+    moments_.t = time();
+    for (std::size_t i = 0; i < p_.size(); ++i)
+        moments_.count(mass_of(p_.species[i]), p_.velocity[i], 1.0);
+    moments_on_ = true;
+}
+
+template <int D> FluxMoments<D> SteppedEngine<D>::flux_moments() const {
+    FluxMoments<D> m = moments_;
+    m.advance(time());
+    return m;
 }
 
 template <int D> void SteppedEngine<D>::bounce(const Event& e) {
@@ -324,8 +344,8 @@ template <int D> void SteppedEngine<D>::check_no_overlap(double rel_tol) const {
 
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x5054535344455045ull; // "EPEDSSTP" in memory order
-// 2: the collision virial's off-diagonal components; 3: image counts (version 2 is read
-// with none crossed)
+// 2: the collision virial's off-diagonal components; 3: image counts and the flux moments
+// (version 2 is read with none crossed and no moments)
 constexpr std::uint32_t checkpoint_version = 3;
 constexpr std::uint32_t oldest_checkpoint_version = 2;
 } // namespace
@@ -346,6 +366,8 @@ template <int D> void SteppedEngine<D>::save(std::ostream& out) const {
     put(out, p_.tag);
     put(out, p_.species);
     put(out, image_);
+    put<std::uint8_t>(out, moments_on_);
+    put(out, moments_);
 }
 
 template <int D>
@@ -370,7 +392,14 @@ SteppedEngine<D> SteppedEngine<D>::load(std::istream& in, const SteppedParams& p
     get(in, e.p_.velocity);
     get(in, e.p_.tag);
     get(in, e.p_.species);
-    if (version >= 3) get(in, e.image_);
+    if (version >= 3) {
+        get(in, e.image_);
+        std::uint8_t on = 0;
+        get(in, on);
+        if (on > 1) throw InputError("checkpoint: corrupt flux moments");
+        e.moments_on_ = on != 0;
+        get(in, e.moments_);
+    }
     const std::size_t n = e.p_.position.size();
     if (version < 3) e.image_.assign(n, {});
     if (n == 0 || e.p_.velocity.size() != n || e.p_.tag.size() != n || e.p_.species.size() != n ||

@@ -29,6 +29,7 @@
 // and momentum too apart from what the walls take, to rounding.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/collision_counters.hpp"
+#include "pedesis/core/flux_moments.hpp"
 #include "pedesis/core/image_count.hpp"
 #include "pedesis/core/particles.hpp"
 #include "pedesis/spatial/cell_list.hpp"
@@ -76,6 +77,12 @@ template <int D> class SteppedEngine {
     // the periodic boxes each particle has crossed (unwrapped: position + image * L)
     const std::vector<ImageCount<D>>& images() const { return image_; }
     const EventCounters<D>& counters() const { return counters_; }
+    // From now on, keeps the running integrals of the Helfand moments (core/flux_moments.hpp),
+    // each collision at its own time within the step, for [transport]. Idempotent.
+    void track_flux_moments();
+    bool tracks_flux_moments() const { return moments_on_; }
+    // Those integrals carried to time() (G's collisional part is counters().virial).
+    FluxMoments<D> flux_moments() const;
     const SteppedStats& stats() const { return stats_; }
     std::size_t size() const { return p_.size(); }
     double kinetic_energy() const;
@@ -152,6 +159,11 @@ template <int D> class SteppedEngine {
 
     CellList<D> cells_;
     EventCounters<D> counters_;
+    FluxMoments<D> moments_;
+    bool moments_on_ = false;
+    double mass_of(std::size_t species) const {
+        return inv_mass_[species] > 0.0 ? 1.0 / inv_mass_[species] : 0.0; // obstacles: none
+    }
     SteppedStats stats_;
 };
 
