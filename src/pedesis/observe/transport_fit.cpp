@@ -14,7 +14,7 @@ namespace {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr std::uint64_t estimator_magic = 0x4e494554534e4945ULL; // "EINSTEIN"
-constexpr std::uint32_t estimator_version = 1;
+constexpr std::uint32_t estimator_version = 2;
 constexpr std::uint64_t min_block_steps = 20;
 constexpr std::uint64_t max_block_steps = std::uint64_t{1} << 52; // exact in a double
 
@@ -98,25 +98,49 @@ EinsteinEstimator::EinsteinEstimator(std::size_t channels, double interval, doub
 }
 
 void EinsteinEstimator::add(const double* values) {
+    double mean = 0.0;
+    for (std::size_t c = 0; c < whole_.channels(); ++c) mean += values[c];
+    mean /= static_cast<double>(whole_.channels());
+    if (whole_.samples() == 0) first_mean_ = mean;
+    last_mean_ = mean;
     whole_.add(values);
     block_.add(values);
     if (block_.samples() <= block_steps_) return;
-    block_values_.push_back(coefficient(block_.lags()));
+    block_lags_.push_back(block_.lags());
     block_.clear();
     block_.add(values); // the end of this block starts the next
 }
 
+double EinsteinEstimator::drift() const {
+    const std::uint64_t n = whole_.samples();
+    if (n < 2) return 0.0;
+    return (last_mean_ - first_mean_) / (static_cast<double>(n - 1) * interval_);
+}
+
 double EinsteinEstimator::fitted(const MomentCorrelator::Lag& lag) const {
-    return remove_drift_ ? lag.mean_square - lag.mean * lag.mean : lag.mean_square;
+    if (!remove_drift_) return lag.mean_square;
+    const double c = drift(), t = lag.tau;
+    const double run = static_cast<double>(whole_.samples() - 1) * interval_;
+    if (!(t < run)) return nan;
+    return (lag.mean_square - 2.0 * c * t * lag.mean + c * c * t * t) / (1.0 - t / run);
 }
 
 double EinsteinEstimator::coefficient(const std::vector<MomentCorrelator::Lag>& lags) const {
-    return scale_ * einstein_slope(lags, window(), remove_drift_) / 2.0;
+    std::vector<MomentCorrelator::Lag> y = lags;
+    for (auto& lag : y) lag.mean_square = fitted(lag);
+    return scale_ * einstein_slope(y, window(), false) / 2.0;
+}
+
+std::vector<double> EinsteinEstimator::block_values() const {
+    std::vector<double> v;
+    v.reserve(block_lags_.size());
+    for (const auto& lags : block_lags_) v.push_back(coefficient(lags));
+    return v;
 }
 
 Estimate EinsteinEstimator::estimate() const {
-    if (block_values_.size() >= 2) return block_estimate(block_values_);
-    return {coefficient(whole_.lags()), nan, block_values_.size()};
+    if (block_lags_.size() >= 2) return block_estimate(block_values());
+    return {coefficient(whole_.lags()), nan, block_lags_.size()};
 }
 
 std::vector<EinsteinEstimator::Row> EinsteinEstimator::rows() const {
@@ -137,8 +161,9 @@ std::vector<EinsteinEstimator::Row> EinsteinEstimator::rows() const {
 }
 
 std::size_t EinsteinEstimator::memory_bytes() const {
-    return sizeof(*this) + whole_.memory_bytes() + block_.memory_bytes() +
-           block_values_.capacity() * sizeof(double);
+    std::size_t blocks = 0;
+    for (const auto& lags : block_lags_) blocks += lags.capacity() * sizeof(lags[0]);
+    return sizeof(*this) + whole_.memory_bytes() + block_.memory_bytes() + blocks;
 }
 
 void EinsteinEstimator::save(std::ostream& out) const {
@@ -151,7 +176,10 @@ void EinsteinEstimator::save(std::ostream& out) const {
     binary::put<std::uint8_t>(out, remove_drift_);
     whole_.save(out);
     block_.save(out);
-    binary::put(out, block_values_);
+    binary::put<std::uint64_t>(out, block_lags_.size());
+    for (const auto& lags : block_lags_) binary::put(out, lags);
+    binary::put(out, first_mean_);
+    binary::put(out, last_mean_);
 }
 
 EinsteinEstimator EinsteinEstimator::load(std::istream& in) {
@@ -175,14 +203,23 @@ EinsteinEstimator EinsteinEstimator::load(std::istream& in) {
                         drift != 0);
     e.whole_ = MomentCorrelator::load(in);
     e.block_ = MomentCorrelator::load(in);
-    binary::get(in, e.block_values_);
+    std::uint64_t blocks = 0;
+    binary::get(in, blocks);
+    // each block holds block_steps samples at least: more blocks than samples is corrupt
+    // (and each takes 8 bytes of the stream at least)
+    if (blocks > e.whole_.samples() || blocks > binary::remaining(in) / 8)
+        throw InputError("transport: corrupt estimator blocks");
+    e.block_lags_.resize(blocks);
+    for (auto& lags : e.block_lags_) binary::get(in, lags);
+    binary::get(in, e.first_mean_);
+    binary::get(in, e.last_mean_);
     const auto same = [&](const MomentCorrelator& c) {
         return c.channels() == channels && c.interval() == interval;
     };
     const std::uint64_t whole = e.whole_.samples(), part = e.block_.samples();
-    const bool counts_agree = whole == 0 ? part == 0 && e.block_values_.empty()
+    const bool counts_agree = whole == 0 ? part == 0 && e.block_lags_.empty()
                                          : part >= 1 && part <= steps && part <= whole &&
-                                               (whole - part) / steps == e.block_values_.size() &&
+                                               (whole - part) / steps == e.block_lags_.size() &&
                                                (whole - part) % steps == 0;
     if (e.block_steps_ != steps || !same(e.whole_) || !same(e.block_) || !counts_agree)
         throw InputError("transport: corrupt estimator (its correlators disagree)");

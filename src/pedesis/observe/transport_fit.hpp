@@ -17,6 +17,15 @@
 // per axis); the shear viscosity from the off-diagonal Helfand moments (scale = 1 / (V T));
 // thermal conductivity from the energy moments (scale = 1 / (V T^2)); the bulk viscosity
 // with remove_drift (the moment of the pressure grows with the mean pressure).
+//
+// Drift removal (EinsteinEstimator): the moment's mean flux c is that of the whole run,
+// c = (G(T) - G(0)) / T averaged over the channels, and each lag's mean square of G - c t
+// follows from its mean square and mean, <(dG - c tau)^2> = ms - 2 c tau mean + c^2 tau^2,
+// divided by 1 - tau / T: for a diffusing moment whose drift is estimated from the same
+// run of length T, the expectation is 2 D tau (1 - tau / T) (a Brownian bridge), so the
+// quotient is unbiased. Removing each block's own mean instead (mean_square - mean^2 per
+// block) is biased low by the same factor with the block's length, about 14 % over the
+// fit window.
 #include "pedesis/observe/auto_correlator.hpp"
 #include "pedesis/observe/moment_correlator.hpp"
 
@@ -83,7 +92,10 @@ class EinsteinEstimator {
     FitWindow window() const { return fit_window(block_time()); }
 
     double block_time() const { return static_cast<double>(block_steps_) * interval_; }
-    const std::vector<double>& block_values() const { return block_values_; }
+    // The coefficient of each whole block (with the whole run's drift, if removed).
+    std::vector<double> block_values() const;
+    // The whole run's mean flux per channel (0 before two samples).
+    double drift() const;
     const MomentCorrelator& correlator() const { return whole_; }
     std::size_t memory_bytes() const;
 
@@ -99,7 +111,10 @@ class EinsteinEstimator {
     bool remove_drift_;
     std::uint64_t block_steps_;
     MomentCorrelator whole_, block_;
-    std::vector<double> block_values_;
+    // each whole block's lags (about a hundred: kilobytes per block), fitted at the end
+    // with the whole run's drift
+    std::vector<std::vector<MomentCorrelator::Lag>> block_lags_;
+    double first_mean_ = 0.0, last_mean_ = 0.0; // the channels' mean at the first and last sample
 };
 
 } // namespace pedesis
