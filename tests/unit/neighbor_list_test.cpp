@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/neighbor_rows.hpp"
 #include "support/random_positions.hpp"
 
 using namespace pedesis;
@@ -59,49 +60,6 @@ template <int D> PairList brute_pairs(const Box<D>& box, const std::vector<Vec<D
     return s;
 }
 
-// Every entry of the list as (lower, higher) index, duplicates kept: a pair listed in
-// both rows, or twice in one, shows up twice; a particle listing itself shows up as (i, i).
-template <int D> PairList listed_pairs(const NeighborList<D>& nl) {
-    PairList s;
-    for (std::uint32_t i = 0; i < nl.size(); ++i)
-        for (const std::uint32_t* p = nl.begin(i); p != nl.end(i); ++p)
-            s.push_back({std::min(i, *p), std::max(i, *p)});
-    std::sort(s.begin(), s.end());
-    return s;
-}
-
-// The sweep's promise: the chunks hold every particle once, and within one colour the
-// particles a chunk's rows write (its own and their row entries) are written by no
-// other chunk of that colour.
-template <int D> void check_colouring(const NeighborList<D>& nl) {
-    std::vector<int> seen(nl.size(), 0);
-    for (int k = 0; k < nl.colours(); ++k) {
-        std::vector<std::int64_t> writer(nl.size(), -1);
-        const auto [first, last] = nl.chunks_of_colour(k);
-        for (std::size_t c = first; c < last; ++c)
-            for (std::uint32_t i : nl.chunk(c)) {
-                ++seen[i];
-                auto claim = [&](std::uint32_t p) {
-                    const auto me = static_cast<std::int64_t>(c);
-                    EXPECT_TRUE(writer[p] == -1 || writer[p] == me)
-                        << "particle " << p << " written by chunks " << writer[p] << " and " << c
-                        << " of colour " << k;
-                    writer[p] = me;
-                };
-                claim(i);
-                for (const std::uint32_t* p = nl.begin(i); p != nl.end(i); ++p) claim(*p);
-            }
-    }
-    for (std::size_t i = 0; i < nl.size(); ++i)
-        EXPECT_EQ(seen[i], 1) << "particle " << i << " in " << seen[i] << " chunks";
-    // for_each_chunk hands out the same chunks
-    std::vector<int> visits(nl.size(), 0);
-    nl.for_each_chunk([&](std::span<const std::uint32_t> rows) {
-        for (std::uint32_t i : rows) ++visits[i];
-    });
-    EXPECT_EQ(std::count(visits.begin(), visits.end(), 1), static_cast<std::ptrdiff_t>(nl.size()));
-}
-
 template <int D> struct Case {
     Vec<D> L;
     std::array<bool, D> periodic;
@@ -128,7 +86,7 @@ void check_against_brute_force(const Box<D>& box, const std::vector<Vec<D>>& pos
     // round either way)
     const PairList expect = brute_pairs(box, pos, nl.r_list());
     EXPECT_GT(expect.size(), 0u) << "case too sparse to test anything";
-    const PairList listed = listed_pairs(nl);
+    const PairList listed = test::listed_pairs(nl);
     EXPECT_EQ(std::adjacent_find(listed.begin(), listed.end()), listed.end()) << "a pair twice";
     PairList missing, extra;
     std::set_difference(expect.begin(), expect.end(), listed.begin(), listed.end(),
@@ -140,7 +98,7 @@ void check_against_brute_force(const Box<D>& box, const std::vector<Vec<D>>& pos
                                  << (missing.empty() ? 0 : missing[0].first) << ", "
                                  << (missing.empty() ? 0 : missing[0].second) << ")";
     EXPECT_TRUE(extra.empty()) << extra.size() << " pairs beyond r_list";
-    check_colouring(nl);
+    test::check_colouring(nl);
 }
 
 template <int D> void check_against_brute_force(const Case<D>& c, std::uint64_t seed) {

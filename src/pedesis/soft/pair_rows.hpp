@@ -210,12 +210,15 @@ template <int D, class Pair, bool Padded>
     const double rc2 = in.range2;
     Vec<D>* force = in.force;
     // the minimum image as the box makes it: d -= L where d > L/2, d += L where d < -L/2
+    // (under Lees-Edwards shear y first, its crossing moving x by the offset: core/box.hpp)
     lanes4 half[D], length[D];
     for (int a = 0; a < D; ++a) {
         const bool periodic = in.box->periodic(a);
         half[a] = lanes4{} + (periodic ? in.box->hi(a) : std::numeric_limits<double>::infinity());
         length[a] = lanes4{} + (periodic ? in.box->length(a) : 0.0);
     }
+    const bool sheared = in.box->sheared();
+    const lanes4 offset = lanes4{} + in.box->shear_offset();
     const mask4 lane = {0, 1, 2, 3};
     const lanes4 one = lanes4{} + 1.0;
     for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -254,6 +257,11 @@ template <int D, class Pair, bool Padded>
                     const lanes4 pa = {pos[j[0]][a], pos[j[1]][a], pos[j[2]][a], pos[j[3]][a]};
                     d[a] = ri[a] - pa;
                 }
+            }
+            if (sheared && !interior) {
+                const mask4 up = d[1] > half[1], down = d[1] < -half[1];
+                d[1] = d[1] - select(up, length[1], lanes4{}) + select(down, length[1], lanes4{});
+                d[0] = d[0] - select(up, offset, lanes4{}) + select(down, offset, lanes4{});
             }
             for (int a = 0; a < D; ++a) {
                 if (!interior) {

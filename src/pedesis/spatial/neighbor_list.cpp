@@ -133,6 +133,12 @@ template <int D> void NeighborList<D>::set_grid(int reach, double cell) {
         // periodic_multiple), so its blocks come in whole colour cycles round the wrap;
         // a shorter one is one block, which every stencil on that axis stays within.
         width[a] = box_.periodic(a) && along[a] < k * w ? along[a] : w;
+    }
+    // Under shear a row at the y faces writes across them into cells shifted along x by
+    // the offset, which may be another block of its colour where y is one block (with
+    // whole colour cycles along y the faces' rows differ in colour): x is one block then.
+    if (box_.sheared() && width[1] == along[1]) width[0] = along[0];
+    for (int a = 0; a < D; ++a) {
         blocks_along[a] = (along[a] + width[a] - 1) / width[a];
         colours_along[a] = std::min(k, blocks_along[a]);
         n_blocks *= static_cast<std::size_t>(blocks_along[a]);
@@ -143,6 +149,8 @@ template <int D> void NeighborList<D>::set_grid(int reach, double cell) {
     half_stencil_ = true;
     for (int a = 0; a < D; ++a)
         half_stencil_ = half_stencil_ && !(box_.periodic(a) && along[a] < 2 * reach + 1);
+    // (a row across the sheared y faces spans 2 reach + 2 cells along x: none twice)
+    if (box_.sheared()) half_stencil_ = half_stencil_ && along[0] >= 2 * reach + 2;
     // (an odometer over D coordinates, axis 0 fastest; false once it wraps round)
     auto next = [](std::array<int, D>& c, const std::array<int, D>& lo,
                    const std::array<int, D>& hi, const std::array<int, D>& step) {
@@ -253,6 +261,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                                    bad, where));
     }
     n_ = 0; // until the rows below are complete
+    build_offset_ = box_.shear_offset();
 
     // Binning: the cell of every particle in parallel, then a counting sort into cell
     // order (serial, about 3 ns per particle), each cell's particles in increasing index
@@ -330,6 +339,12 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     // further than r_list in the direct difference, and a shifted difference shorter
     // than r_list <= L/2 is the minimum image.
     const bool by_image = half_stencil_;
+    // Lees-Edwards shear: the offset of the image above, and where a row across the y
+    // faces starts along x (sheared_row_shift).
+    const bool sheared = box_.sheared();
+    const double offset = box_.shear_offset();
+    const int shift_up = sheared ? sheared_row_shift(1) : 0;
+    const int shift_down = sheared ? sheared_row_shift(-1) : 0;
     // For the scans' trimming (trim_segments below): the cells' widths, and a margin far
     // above the rounding of a position's offset in its cell or of its binning.
     if (reach_ > max_stencil_reach) throw std::logic_error("neighbour list: stencil reach above 2");
@@ -378,6 +393,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
         {
             std::size_t cur = 0, lim = 0;    // this thread's chunk: [cur, lim)
             std::vector<std::uint32_t> sink; // rows go here once storage ran out (counted only)
+            std::vector<std::uint32_t> sheared_cells; // sheared_cells_within's
             // Where a row of at most `cand` entries goes: the chunk if it has room, else a
             // new chunk; nullptr once the storage is full (the pass is then repeated).
             auto place_row = [&](std::size_t cand) -> std::uint32_t* {
@@ -483,7 +499,9 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                 // r_list reaches (trim_segments below), with half-width cells only: with
                 // cells of r_list (reach 1) that trims a smaller share (a fifth of the
                 // cells in 3D, a tenth in 2D), and ABP in 2D ran 0.94x.
-                const bool trim = reach_ == max_stencil_reach;
+                // (not under shear: the shifted rows across the y faces are not at the
+                // offsets trim_segments measures)
+                const bool trim = reach_ == max_stencil_reach && !sheared;
                 if (half_stencil_) {
                     // Row by row (stencil_rows_): the axes above 0 give the row's image
                     // and first cell once; a row that stays inside axis 0 is consecutive
@@ -493,6 +511,7 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                         std::size_t upper = 0; // the row's index on the axes above 0
                         bool inside = true;
                         Vec<D> im{};
+                        int x0 = t.x0, x1 = t.x1;
                         for (int a = D - 1; a >= 1; --a) {
                             int x = cc[a] + t.o[a];
                             if (periodic[a]) {
@@ -505,6 +524,16 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                                     x -= along[a];
                                     im[a] = -length[a];
                                 }
+                                // Across the sheared y faces the image slides by the
+                                // offset: the row's cells shift along x with it, one
+                                // more to cover the offset's part of a cell. (Such a
+                                // row has every x offset -reach .. reach.)
+                                if (sheared && a == 1 && im[1] != 0.0) {
+                                    const bool up = im[1] < 0.0;
+                                    im[0] = up ? -offset : offset;
+                                    x0 = up ? shift_up : shift_down;
+                                    x1 = x0 + 2 * reach_ + 1;
+                                }
                             } else {
                                 inside = inside && x >= 0 && x < along[a];
                             }
@@ -512,26 +541,26 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                                     static_cast<std::size_t>(x);
                         }
                         if (!inside) continue;
-                        const int x_first = cc[0] + t.x0, x_last = cc[0] + t.x1;
+                        const int x_first = cc[0] + x0, x_last = cc[0] + x1;
                         if (x_first >= 0 && x_last < along[0]) {
                             const std::size_t nc = upper * static_cast<std::size_t>(along[0]) +
                                                    static_cast<std::size_t>(x_first);
                             if (trim)
                                 add_segment_row(nc, t, im);
                             else
-                                add_range(cell_start_[nc], cell_start_[nc + (t.x1 - t.x0) + 1], im);
+                                add_range(cell_start_[nc], cell_start_[nc + (x1 - x0) + 1], im);
                             continue;
                         }
-                        for (int dx = t.x0; dx <= t.x1; ++dx) {
+                        for (int dx = x0; dx <= x1; ++dx) {
                             int x = cc[0] + dx;
                             Vec<D> imx = im;
                             if (periodic[0]) {
                                 if (x < 0) {
                                     x += along[0];
-                                    imx[0] = length[0];
+                                    imx[0] = im[0] + length[0];
                                 } else if (x >= along[0]) {
                                     x -= along[0];
-                                    imx[0] = -length[0];
+                                    imx[0] = im[0] - length[0];
                                 }
                             } else if (x < 0 || x >= along[0]) {
                                 continue;
@@ -546,6 +575,9 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
                                 add_cell(nc, imx);
                         }
                     }
+                } else if (sheared && wraps(c)) {
+                    sheared_cells_within(c, sheared_cells);
+                    for (const std::uint32_t nc : sheared_cells) add_cell(nc, Vec<D>{});
                 } else {
                     cells_.for_each_cell_within(
                         static_cast<std::int32_t>(c), reach_,
@@ -668,6 +700,65 @@ template <int D> void NeighborList<D>::build(const std::vector<Vec<D>>& pos) {
     ++builds_;
 }
 
+template <int D> int NeighborList<D>::sheared_row_shift(int direction) const {
+    // A neighbour across the upper y face is the image of a particle stored at x less the
+    // offset (across the lower one, plus it): from a cell at x index c its cells within
+    // r_list <= reach cell widths run from c - reach + floor(-+offset / w) to one beyond
+    // c + reach + that floor. (Cells are wider than r_list / reach by a margin far above
+    // the rounding of the floor and of the binning.)
+    const double w = cells_.cell_width(0);
+    return static_cast<int>(
+               std::floor((direction > 0 ? -box_.shear_offset() : box_.shear_offset()) / w)) -
+           reach_;
+}
+
+template <int D>
+void NeighborList<D>::sheared_cells_within(std::int64_t c, std::vector<std::uint32_t>& out) const {
+    std::array<int, D> along, cc;
+    for (int a = 0; a < D; ++a) {
+        along[a] = cells_.cells_along(a);
+        cc[a] = static_cast<int>(c % along[a]);
+        c /= along[a];
+    }
+    const int m = reach_;
+    const int up = sheared_row_shift(1), down = sheared_row_shift(-1);
+    auto wrapped = [](int x, int n) { return ((x % n) + n) % n; };
+    out.clear();
+    // every offset on the axes above x, odometer fashion (axis 1 fastest)
+    std::array<int, D> o;
+    o.fill(-m);
+    while (true) {
+        const int y = cc[1] + o[1];
+        // images across the y faces: one at most for a pair within r_list <= L_y / 2
+        const int images = y < 0 ? -1 : y >= along[1] ? 1 : 0;
+        bool inside = y >= -along[1] && y < 2 * along[1];
+        std::size_t upper = static_cast<std::size_t>(wrapped(y, along[1]));
+        std::size_t stride = static_cast<std::size_t>(along[1]);
+        for (int a = 2; a < D; ++a) {
+            int z = cc[a] + o[a];
+            if (box_.periodic(a))
+                z = wrapped(z, along[a]);
+            else
+                inside = inside && z >= 0 && z < along[a];
+            upper += stride * static_cast<std::size_t>(std::clamp(z, 0, along[a] - 1));
+            stride *= static_cast<std::size_t>(along[a]);
+        }
+        if (inside) {
+            const int first = images == 0 ? cc[0] - m : cc[0] + (images > 0 ? up : down);
+            const int count = std::min(images == 0 ? 2 * m + 1 : 2 * m + 2, along[0]);
+            for (int k = 0; k < count; ++k)
+                out.push_back(static_cast<std::uint32_t>(
+                    upper * static_cast<std::size_t>(along[0]) +
+                    static_cast<std::size_t>(wrapped(first + k, along[0]))));
+        }
+        int a = 1;
+        while (a < D && ++o[a] > m) o[a++] = -m;
+        if (a == D) break;
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
 template <int D> void NeighborList<D>::reorder(const std::vector<std::uint32_t>& order) {
     if (order.size() != n_)
         throw RunError(
@@ -688,6 +779,7 @@ template <int D> void NeighborList<D>::reorder(const std::vector<std::uint32_t>&
 
 template <int D> bool NeighborList<D>::needs_rebuild(const std::vector<Vec<D>>& pos) const {
     if (builds_ == 0 || n_ != pos.size()) return true;
+    if (box_.sheared()) return sheared_moves_exceed(pos, skin_);
     const double half2 = 0.25 * skin_ * skin_, skin2 = skin_ * skin_;
     // the particles in blocks, each marked when one of its particles moved more than
     // skin/2: the inner loops stay free of branches, and only marked blocks are read again
@@ -761,6 +853,7 @@ bool NeighborList<D>::missing_partner(const std::vector<Vec<D>>& pos, std::size_
 
 template <int D> bool NeighborList<D>::moved_half_skin(const std::vector<Vec<D>>& pos) const {
     if (builds_ == 0 || n_ != pos.size()) return true;
+    if (box_.sheared()) return sheared_moves_exceed(pos, skin_);
     const double lim2 = 0.25 * skin_ * skin_;
     const auto sn = static_cast<std::int64_t>(n_);
     bool moved = false;
@@ -770,6 +863,35 @@ template <int D> bool NeighborList<D>::moved_half_skin(const std::vector<Vec<D>>
         if (!(norm2(box_.minimum_image(pos[k] - home_[k])) <= lim2)) moved = true;
     }
     return moved;
+}
+
+template <int D>
+bool NeighborList<D>::sheared_moves_exceed(const std::vector<Vec<D>>& pos, double limit) const {
+    // A pair unlisted at the build was r_list or more apart in some image; each move
+    // (measured by the minimum image now, so that a crossing of the y faces counts as
+    // if made at the present offset) and, across the y faces, the offset's change since
+    // the build bring it closer by at most their sum. The old skin/2 rule with the
+    // offset's change in: a sheared list is rebuilt often anyway (the streaming moves
+    // particles near the y faces by rate L_y / 2 per unit time).
+    const double lx = box_.length(0);
+    double change = box_.shear_offset() - build_offset_;
+    change -= lx * std::nearbyint(change / lx);
+    const auto sn = static_cast<std::int64_t>(n_);
+    double most2 = 0.0;
+    bool bad = false;
+#pragma omp parallel for schedule(static) reduction(max                                            \
+                                                    : most2)                                       \
+    reduction(||                                                                                   \
+              : bad) if (sn >= parallel_min)
+    for (std::int64_t k = 0; k < sn; ++k) {
+        const double d2 = norm2(box_.minimum_image(pos[k] - home_[k]));
+        // (a NaN position asks for a rebuild, which reports it)
+        if (!(d2 >= 0.0))
+            bad = true;
+        else
+            most2 = std::max(most2, d2);
+    }
+    return bad || !(2.0 * std::sqrt(most2) + std::abs(change) <= limit);
 }
 
 template <int D> std::size_t NeighborList<D>::memory_bytes() const {

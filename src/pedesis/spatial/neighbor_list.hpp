@@ -73,6 +73,14 @@ template <int D> class NeighborList {
     // before the first build.
     bool moved_half_skin(const std::vector<Vec<D>>& pos) const;
 
+    // Lees-Edwards shear (core/box.hpp): the box's offset now. A pair across the y faces
+    // moves by the offset's change relative to each other, so under shear both rules
+    // above ask for a rebuild once twice the largest move since the build plus that
+    // change (to the nearest image) exceeds the skin.
+    void set_shear_offset(double offset) { box_.set_shear_offset(offset); }
+    // The offset the last build saw (a checkpoint restores the list with it).
+    double build_shear_offset() const { return build_offset_; }
+
     // Follows a reordering of the particles' storage (new index i holds the particle that
     // was at old index order[i]) without a rebuild: every particle keeps the same
     // neighbours in the same row order, so forces summed over the rows do not change by a
@@ -261,6 +269,16 @@ template <int D> class NeighborList {
     mutable std::vector<std::uint8_t> mover_blocks_;
     std::size_t n_ = 0;
     std::uint64_t builds_ = 0;
+    double build_offset_ = 0.0; // the shear offset of the last build
+    // Under shear: whether 2 (largest move since the build) + |offset change| > limit.
+    bool sheared_moves_exceed(const std::vector<Vec<D>>& pos, double limit) const;
+    // Under shear, where a cell's stencil crosses the y faces (neighbor_list.cpp): the
+    // first x cell of a crossing row relative to the unsheared one, for a crossing
+    // upward (+1) or downward (-1).
+    int sheared_row_shift(int direction) const;
+    // Under shear with the whole stencil: the distinct cells within reach of cell c,
+    // the rows across the y faces shifted with the offset.
+    void sheared_cells_within(std::int64_t c, std::vector<std::uint32_t>& out) const;
     // Row i: where it starts in neighbors_ (the high 40 bits: rows may lie anywhere, in
     // an order that depends on the threads) and its length (the low 24 bits), in one
     // word as the CSR offsets took. 40 bits: a dense 3D system with ~80 neighbours
