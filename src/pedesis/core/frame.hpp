@@ -32,6 +32,11 @@ template <int D> struct Frame {
     bool has_force() const { return forces != nullptr; }
     const Vec<D>& director(std::size_t i) const { return (*directors)[i]; }
     const Vec<D>& force(std::size_t i) const { return (*forces)[i]; }
+    // The velocity in the laboratory frame, what files show: under Lees-Edwards shear the
+    // stored (peculiar) velocity plus the streaming velocity, else the stored one.
+    Vec<D> lab_velocity(std::size_t i) const {
+        return box.lab_velocity(particles.position[i], particles.velocity[i]);
+    }
     std::array<std::int32_t, D> image(std::size_t i) const {
         return images ? (*images)[i] : std::array<std::int32_t, D>{};
     }

@@ -60,6 +60,10 @@ template <int D> gpu::Model gpu_model(const SoftState<D>& s, Evolver<D>& evolver
     const double reach = evolver.interaction_reach();
     m.skin = evolver.skin();
     m.r_cut = evolver.list_cutoff();
+    // (its kernels know no sliding images, nor SLLOD's peculiar velocities)
+    if (s.box.sheared())
+        throw InputError("device = \"gpu\" does not run Lees–Edwards shear ([box] shear_rate); "
+                         "run it on the CPU");
     for (int a = 0; a < D; ++a) {
         if (!s.box.periodic(a))
             throw InputError("device = \"gpu\" runs periodic boxes only (axis " +

@@ -9,6 +9,9 @@
 // (seed, stream, tag, s): the trajectory does not depend on thread count or storage order.
 // xi is a standard normal; brownian's, with uniform_noise, a uniform variate of the same
 // variance (batch_normals.hpp).
+// Under Lees-Edwards shear at rate g (core/box.hpp) the particles also stream with the
+// flow: r += dt F / gamma + g y dt e_x + noise, y of the step's start; the velocity kept
+// (move / dt) is the peculiar one, without the streaming.
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
 #include "pedesis/core/sphere_rotation.hpp"
@@ -86,6 +89,7 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
         const auto n = static_cast<std::int64_t>(s.owned());
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
+        const double stream = s.box.shear_rate() * dt; // 0 without shear
         detail::FirstBadMove<D> bad;
         detail::parallel_for_each_batch(n, s.thread_shares, [&](std::int64_t first, int m) {
             // (locals, not the captured references: the stores below cannot change them, so
@@ -101,6 +105,20 @@ template <int D> class BrownianIntegrator final : public Integrator<D> {
                                        step, m, z);
             else // (unread; filled so that no compiler takes it for uninitialised)
                 std::fill_n(z, m * D, 0.0);
+            if (stream > 0.0) {
+                for (int k = 0; k < m; ++k) {
+                    const std::int64_t i = first + k;
+                    Vec<D> move = drift[sp[i]] * force[i];
+                    if (noisy)
+                        for (int a = 0; a < D; ++a) move[a] += kick[sp[i]] * z[k * D + a];
+                    velocity[i] = move * inv_dt;
+                    move[0] += stream * position[i][1];
+                    if (!(norm2(move) <= limit2)) batch_bad.note(i, move);
+                    position[i] += move;
+                }
+                batch_bad.merge_into(bad);
+                return;
+            }
             for (int k = 0; k < m; ++k) {
                 const std::int64_t i = first + k;
                 Vec<D> move = drift[sp[i]] * force[i];

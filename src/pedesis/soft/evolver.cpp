@@ -96,11 +96,29 @@ template <int D> std::vector<Vec<D>> Evolver<D>::list_reference() const {
     return nl_ && !domain_ ? nl_->build_positions() : std::vector<Vec<D>>{};
 }
 
+template <int D> double Evolver<D>::list_shear_offset() const {
+    return nl_ ? nl_->build_shear_offset() : 0.0;
+}
+
 template <int D>
-void Evolver<D>::restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds) {
+void Evolver<D>::restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds,
+                              double shear_offset) {
     make_list();
-    if (!reference.empty()) nl_->build(reference);
+    if (!reference.empty()) {
+        // the rows of the build, across the sheared faces too, then the offset of now
+        if (s_.box.sheared()) nl_->set_shear_offset(shear_offset);
+        nl_->build(reference);
+        if (s_.box.sheared()) nl_->set_shear_offset(s_.box.shear_offset());
+    }
     builds_ = builds;
+}
+
+template <int D> void Evolver<D>::slide_images(double dt) {
+    // By increments rather than from the time: a restart's clock (t0 + steps dt from the
+    // checkpoint) rounds otherwise than the continuous run's, and the offset must not.
+    const double g = s_.box.shear_rate() * s_.box.length(1);
+    s_.box.set_shear_offset(s_.box.shear_offset() + g * dt);
+    if (nl_) nl_->set_shear_offset(s_.box.shear_offset());
 }
 
 template <int D> void Evolver<D>::wrap_all() {
@@ -248,9 +266,18 @@ template <int D> void Evolver<D>::step(double dt) {
     // the tutorial's guidance on choosing the pad; with no skin, the cutoff is the scale.
     const double max_move = skin_ > 0.0 ? skin_ : r_list_cut_;
     for (auto& i : integrators_) i->prestep(s_, dt, max_move);
+    // Under shear the images slide to where they are at the step's end when the
+    // positions get there: before the forces of an inertial step's new positions, after
+    // an overdamped step's move (its forces are those of the positions it starts from).
+    const bool sheared = s_.box.sheared();
+    const bool overdamped =
+        sheared && std::any_of(integrators_.begin(), integrators_.end(),
+                               [](const auto& i) { return i->overdamped_positions(); });
+    if (sheared && !overdamped) slide_images(dt);
     // checked after the pre-steps, so that velocity-Verlet drifts are covered too
     compute_forces();
     for (auto& i : integrators_) i->poststep(s_, dt, max_move);
+    if (overdamped) slide_images(dt);
     wrap_all();
     ++s_.step;
     s_.time += dt;

@@ -87,8 +87,11 @@ template <int D> class Evolver {
 
     // What a checkpoint needs to continue bit for bit: the positions of the last list
     // build (the list is rebuilt from them, giving the same rows) and the build count.
+    // Under Lees-Edwards shear also the box's offset at that build.
     std::vector<Vec<D>> list_reference() const;
-    void restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds);
+    double list_shear_offset() const;
+    void restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds,
+                      double shear_offset = 0.0);
 
     // Energy and virial of the conservative pair forces at the current positions, with
     // the terms' tail corrections (ForceTerm::tail).
@@ -114,6 +117,8 @@ template <int D> class Evolver {
     // (`error` non-empty), else returns whether any asks to stop (`stop`).
     bool agree(const std::string& error, bool stop);
     void make_list();
+    // Under Lees-Edwards shear: the box's offset (and its list's) slid on by rate L_y dt.
+    void slide_images(double dt);
     void reorder_storage();
     void wrap_all();
 

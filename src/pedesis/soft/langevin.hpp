@@ -14,6 +14,8 @@
 // on thread count or storage order. xi is a standard normal, or with uniform_noise a
 // uniform variate of the same variance (batch_normals.hpp). A particle of infinite mass
 // is a fixed obstacle.
+// Under Lees-Edwards shear the velocities are peculiar, B and A are SLLOD's exact flows
+// (sllod.hpp), and O, the thermostat, acts on the peculiar velocity.
 #include "pedesis/core/chunk_shares.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/rng.hpp"
@@ -21,6 +23,7 @@
 #include "pedesis/soft/blow_up.hpp"
 #include "pedesis/soft/per_species.hpp"
 #include "pedesis/soft/plugins.hpp"
+#include "pedesis/soft/sllod.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -112,6 +115,8 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         const auto n = static_cast<std::int64_t>(s.owned());
         const auto step = static_cast<std::uint32_t>(s.step);
         const double max2 = max_move * max_move;
+        const bool sheared = s.box.sheared();
+        const double g = s.box.shear_rate(), g_h = 0.5 * dt * g;
         // The move of the lowest bad index is kept for the message: after the O step the
         // velocities no longer tell what it was.
         detail::FirstBadMove<D> bad;
@@ -123,6 +128,23 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
             if (noisy)
                 detail::batch_noise<D>(noise_, seed_, RngStream::thermostat, tag + first, step, m,
                                        z);
+            if (sheared) {
+                for (int q = 0; q < m; ++q) {
+                    const std::int64_t i = first + q;
+                    const std::uint16_t k = sp[i];
+                    Vec<D> v = detail::sllod_kick_one(vel[i], force[i], kick[k], g_h);
+                    Vec<D> move = detail::sllod_drift_one(v, pos[i][1], half_drift[k], g);
+                    v *= damp[k];
+                    if (noisy)
+                        for (int a = 0; a < D; ++a) v[a] += noise[k] * z[q * D + a];
+                    move += detail::sllod_drift_one(v, pos[i][1] + move[1], half_drift[k], g);
+                    if (!(norm2(move) <= max2)) batch_bad.note(i, move);
+                    pos[i] += move;
+                    vel[i] = v;
+                }
+                batch_bad.merge_into(bad);
+                return;
+            }
             for (int q = 0; q < m; ++q) {
                 const std::int64_t i = first + q;
                 const std::uint16_t k = sp[i];
@@ -151,6 +173,10 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
         const Vec<D>* force = s.force.data();
         Vec<D>* vel = s.p.velocity.data();
         const auto n = static_cast<std::int64_t>(s.owned());
+        if (s.box.sheared()) {
+            detail::sllod_kick(s, c_.kick, dt);
+            return;
+        }
         parallel_for_each_index(n, s.thread_shares,
                                 [&](std::int64_t i) { vel[i] += kick[sp[i]] * force[i]; });
     }

@@ -2,7 +2,10 @@
 // State of a soft / active particle system (the `brownian`, `langevin` and `nve`
 // dynamics): the shared particle store plus what forces, torques and integrators need.
 // Positions are kept wrapped into the box; `image` counts the periodic boxes crossed so
-// that unwrapped positions (for the MSD) are r + image * L.
+// that unwrapped positions (for the MSD) are r + image * L, plus image_y times the
+// offset along x under Lees-Edwards shear (the sliding images: core/box.hpp).
+// Velocities are peculiar under shear: relative to the streaming velocity rate * y
+// along x (Frame::lab_velocity adds it back for files).
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/frame.hpp"
 #include "pedesis/core/particles.hpp"
@@ -85,6 +88,7 @@ template <int D> struct SoftState {
     Vec<D> unwrapped(std::size_t i) const {
         Vec<D> r = p.position[i];
         for (int a = 0; a < D; ++a) r[a] += image[i][a] * box.length(a);
+        if (box.sheared()) r[0] += image[i][1] * box.shear_offset();
         return r;
     }
 };

@@ -5,9 +5,14 @@
 // It is symplectic and time-reversible, so the energy error stays bounded, O(dt^2), over
 // long runs instead of drifting. The pre-step reads the forces of the current positions,
 // hence needs_initial_forces(). A particle of infinite mass is a fixed obstacle.
+//
+// Under Lees-Edwards shear at rate g (core/box.hpp) the velocities are peculiar and the
+// equations SLLOD's: dr/dt = v + g y e_x, dv/dt = F/m - g v_y e_x. The same splitting
+// with each part's exact flow (detail::sllod_kick, sllod_drift in langevin.hpp).
 #include "pedesis/core/chunk_shares.hpp"
 #include "pedesis/soft/blow_up.hpp"
 #include "pedesis/soft/plugins.hpp"
+#include "pedesis/soft/sllod.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -23,6 +28,10 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
 
     void prestep(SoftState<D>& s, double dt, double max_move) override {
         tabulate(s, dt);
+        if (s.box.sheared()) {
+            detail::sllod_kick_drift(s, kick_, drift_, dt, max_move, name());
+            return;
+        }
         const double* kick = kick_.data();
         const double* drift = drift_.data();
         const std::uint16_t* sp = s.p.species.data();
@@ -55,6 +64,10 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         const Vec<D>* force = s.force.data();
         Vec<D>* vel = s.p.velocity.data();
         const auto n = static_cast<std::int64_t>(s.owned());
+        if (s.box.sheared()) {
+            detail::sllod_kick(s, kick_, dt);
+            return;
+        }
         parallel_for_each_index(n, s.thread_shares,
                                 [&](std::int64_t i) { vel[i] += kick[sp[i]] * force[i]; });
     }
