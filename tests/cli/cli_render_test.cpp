@@ -258,6 +258,19 @@ TEST_F(Render, SoftRunGsdWithDirectors) {
     EXPECT_EQ(read_png(dir / "frames" / "frame_000002.png").width, 300);
 }
 
+// A sheared run's GSD has the tilt xy = offset / L_y (Lees-Edwards): drawn, its positions
+// lying in the orthorhombic box as pedesis writes them.
+TEST_F(Render, ShearedRunGsdIsDrawn) {
+    std::string sheared = soft_config;
+    sheared.replace(sheared.find("length = 20.0"), 13, "length = 20.0\nshear_rate = 0.5");
+    write("sheared.toml", sheared);
+    auto r = run_pedesis("run sheared.toml --out sheared", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    r = run_pedesis("render sheared --out frames/ --size 200x200", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(read_png(dir / "frames" / "frame_000002.png").width, 200);
+}
+
 // A radius of 1e308 made render hang inside Cairo, deaf to SIGINT (issue 14): the disk
 // is drawn as one covering the picture, within seconds.
 TEST_F(Render, HugeRadiusDrawsInsteadOfHanging) {

@@ -1,8 +1,10 @@
-// A soft checkpoint of version 3 (written before active_ou added its active velocities,
-// version 4) still restores: a version-4 checkpoint of a run without active_ou is turned
-// into the version-3 file an older pedesis wrote (engine version 3, without the trailing
-// empty array of active velocities, envelope length and CRC redone), and the restart
-// from it must continue the run bit for bit, as from the version-4 file.
+// Soft checkpoints of versions 3 (written before active_ou added its active velocities,
+// version 4) and 4 (before Lees-Edwards shear added its block, version 5) still restore:
+// a version-5 checkpoint of an unsheared run without active_ou is turned into the file an
+// older pedesis wrote (the engine version, without the trailing shear block of two
+// numbers for the offsets, the rate and three empty arrays, and for version 3 without the
+// empty array of active velocities before it, envelope length and CRC redone), and the
+// restart from it must continue the run bit for bit, as from the version-5 file.
 #include "cli/cli_support.hpp"
 
 #include <zlib.h>
@@ -29,20 +31,25 @@ std::string abp_config(int steps) {
 
 // The envelope (checkpoint_file.hpp): 8 bytes magic, 8 bytes payload length, payload,
 // CRC-32 of the payload and then of the first 16 bytes.
-std::string as_version_3(const std::string& file) {
+std::string as_version(const std::string& file, std::uint32_t older) {
     std::uint64_t n = 0;
     std::memcpy(&n, file.data() + 8, 8);
     EXPECT_EQ(file.size(), 20 + n);
     std::string payload = file.substr(16, n);
     std::uint32_t version = 0;
     std::memcpy(&version, payload.data() + 8, 4); // after the engine's 8-byte magic
-    EXPECT_EQ(version, 4u);
-    version = 3;
-    std::memcpy(payload.data() + 8, &version, 4);
-    std::uint64_t empty = 1;
-    std::memcpy(&empty, payload.data() + payload.size() - 8, 8);
-    EXPECT_EQ(empty, 0u) << "the last array (active velocities) should be empty";
-    payload.resize(payload.size() - 8);
+    EXPECT_EQ(version, 5u);
+    std::memcpy(payload.data() + 8, &older, 4);
+    // the shear block: rate, offset, the list's offset (all 0), three empty arrays
+    std::string shear(48, '\0');
+    EXPECT_EQ(payload.substr(payload.size() - 48), shear) << "the run should be unsheared";
+    payload.resize(payload.size() - 48);
+    if (older == 3) {
+        std::uint64_t empty = 1;
+        std::memcpy(&empty, payload.data() + payload.size() - 8, 8);
+        EXPECT_EQ(empty, 0u) << "the last array (active velocities) should be empty";
+        payload.resize(payload.size() - 8);
+    }
     std::string head = file.substr(0, 16);
     const std::uint64_t shorter = payload.size();
     std::memcpy(head.data() + 8, &shorter, 8);
@@ -62,13 +69,19 @@ TEST_F(SoftCheckpointVersion3, RestoresAndContinuesBitForBit) {
     write("half.toml", abp_config(200));
     ASSERT_EQ(run_pedesis("run full.toml --out full", dir, 120).exit_code, 0);
     ASSERT_EQ(run_pedesis("run half.toml --out half", dir, 120).exit_code, 0);
-    write("old.bin", as_version_3(read("half/checkpoint.bin")));
-    const CliResult cont = run_pedesis("run full.toml --out cont --restart old.bin", dir, 120);
-    ASSERT_EQ(cont.exit_code, 0) << cont.output;
-    const std::string full = read("full/log.csv"), rest = read("cont/log.csv");
-    const std::string rows = rest.substr(rest.find('\n') + 1);
-    ASSERT_GT(rows.size(), 20u);
-    EXPECT_NE(full.find(rows), std::string::npos) << "continued:\n" << rest << "\nfull:\n" << full;
+    for (std::uint32_t older : {3u, 4u}) {
+        const std::string old = "old" + std::to_string(older);
+        write(old + ".bin", as_version(read("half/checkpoint.bin"), older));
+        const CliResult cont =
+            run_pedesis("run full.toml --out " + old + " --restart " + old + ".bin", dir, 120);
+        ASSERT_EQ(cont.exit_code, 0) << cont.output;
+        const std::string full = read("full/log.csv"), rest = read(old + "/log.csv");
+        const std::string rows = rest.substr(rest.find('\n') + 1);
+        ASSERT_GT(rows.size(), 20u);
+        EXPECT_NE(full.find(rows), std::string::npos) << "version " << older << ", continued:\n"
+                                                      << rest << "\nfull:\n"
+                                                      << full;
+    }
 }
 
 } // namespace

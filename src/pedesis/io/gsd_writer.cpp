@@ -176,7 +176,10 @@ std::vector<Chunk> frame_chunks(const Frame<D>& s, bool write_types,
     std::array<float, 3> L{0.0f, 0.0f, 0.0f};
     for (int a = 0; a < D; ++a) L[a] = static_cast<float>(s.box.length(a));
     for (float l : L) put<float>(box.bytes, l);
-    for (int k = 0; k < 3; ++k) put<float>(box.bytes, 0.0f); // no tilt
+    // the tilt factors xy, xz, yz: under Lees-Edwards shear the image above is displaced
+    // along x by the offset, HOOMD's a2 = (xy L_y, L_y, 0), so xy = offset / L_y
+    const double xy = s.box.sheared() ? s.box.shear_offset() / s.box.length(1) : 0.0;
+    for (float t : {static_cast<float>(xy), 0.0f, 0.0f}) put<float>(box.bytes, t);
     chunks.push_back(std::move(box));
 
     Chunk count{n_id, GsdType::uint32, 1, 1, {}};
@@ -229,19 +232,26 @@ std::vector<Chunk> frame_chunks(const Frame<D>& s, bool write_types,
         std::array<std::int32_t, 3> img{0, 0, 0};
         const std::array<std::int32_t, D> stored = s.image(i);
         for (int a = 0; a < D; ++a) img[a] = stored[a];
-        for (int a = 0; a < 3; ++a) {
-            float x = static_cast<float>(r[a]);
-            if (a < D && s.box.periodic(a) && x >= 0.5f * L[a]) {
-                x -= L[a];
+        std::array<float, 3> x;
+        for (int a = 0; a < 3; ++a) x[a] = static_cast<float>(r[a]);
+        // (y first: under shear its image shifts x)
+        for (int a : {1, 0, 2}) {
+            if (a < D && s.box.periodic(a) && x[a] >= 0.5f * L[a]) {
+                x[a] -= L[a];
                 img[a] += 1;
+                if (a == 1 && s.box.sheared()) x[0] -= static_cast<float>(s.box.shear_offset());
             }
-            put<float>(position.bytes, x);
         }
+        if (s.box.periodic(0) && x[0] < -0.5f * L[0]) { // (only after that shift)
+            x[0] += L[0];
+            img[0] -= 1;
+        }
+        for (float c : x) put<float>(position.bytes, c);
         for (std::int32_t k : img) put<std::int32_t>(image.bytes, k);
 
         if (s.has_director())
             for (float c : orientation_of(as_3d(s.director(i)))) put<float>(orientation.bytes, c);
-        for (double v : as_3d(p.velocity[i])) put<float>(velocity.bytes, static_cast<float>(v));
+        for (double v : as_3d(s.lab_velocity(i))) put<float>(velocity.bytes, static_cast<float>(v));
     }
     chunks.push_back(std::move(typeid_chunk));
     chunks.push_back(std::move(mass));

@@ -41,7 +41,7 @@ template <int D> std::string table_frame(const Frame<D>& s) {
         fmt::format_to(out, "{}", p.tag[i]);
         put_vec(out, p.position[i]);
         if (s.has_director()) put_vec(out, s.director(i));
-        put_vec(out, p.velocity[i]);
+        put_vec(out, s.lab_velocity(i));
         if (s.has_force()) put_vec(out, s.force(i));
         fmt::format_to(out, "\n");
     }

@@ -54,6 +54,11 @@ template <int D> json document(const Box<D>& box, double time, json particles) {
     static constexpr const char* names[] = {"Lx", "Ly", "Lz"};
     json box_json = json::object();
     for (int a = 0; a < D; ++a) box_json[names[a]] = box.length(a);
+    // Lees-Edwards shear: the image above is displaced along x by shear_offset
+    if (box.sheared()) {
+        box_json["shear_rate"] = box.shear_rate();
+        box_json["shear_offset"] = box.shear_offset();
+    }
 
     json system = json::object();
     system["time"] = time;
@@ -474,6 +479,7 @@ template <int D> nlohmann::json to_tutorial_json(const Frame<D>& f) {
     json particles = json::array();
     for (std::uint32_t i : f.particles.index_of_tags()) {
         json q = particle_value(f.particles, i);
+        if (f.box.sheared()) q["v"] = vec_value(f.lab_velocity(i));
         if (f.has_director()) q["n"] = vec_value(f.director(i));
         if (f.has_force()) q["f"] = vec_value(f.force(i));
         particles.push_back(std::move(q));

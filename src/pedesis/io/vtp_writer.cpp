@@ -79,7 +79,7 @@ template <int D> std::string vtp_document(const Frame<D>& s) {
         data_array(out, "Float64", "director", 3, n,
                    [&](Out o, std::size_t k) { vector_row(o, as_3d(s.director(index[k]))); });
     data_array(out, "Float64", "velocity", 3, n,
-               [&](Out o, std::size_t k) { vector_row(o, as_3d(p.velocity[index[k]])); });
+               [&](Out o, std::size_t k) { vector_row(o, as_3d(s.lab_velocity(index[k]))); });
     data_array(out, "Float64", "mass", 1, n,
                [&](Out o, std::size_t k) { fmt::format_to(o, "{}", p.mass(index[k])); });
     if (s.has_force())

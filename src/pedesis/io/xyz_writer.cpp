@@ -53,13 +53,18 @@ template <int D> std::string xyz_frame(const Frame<D>& f) {
     fmt::format_to(out, "Lattice=\"{} 0 0 0 {} 0 0 0 {}\" Origin=\"{} {} {}\" ", L[0], L[1], L[2],
                    -0.5 * L[0], -0.5 * L[1], -0.5 * L[2]);
     fmt::format_to(out, "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1:id:I:1 ");
-    fmt::format_to(out, "Time={} pbc=\"{} {} {}\"\n", f.time, pbc[0], pbc[1], pbc[2]);
+    fmt::format_to(out, "Time={} pbc=\"{} {} {}\"", f.time, pbc[0], pbc[1], pbc[2]);
+    // Lees-Edwards shear: the image above is displaced along x by shear_offset (the cell
+    // stays orthorhombic, as the positions are wrapped into it)
+    if (box.sheared())
+        fmt::format_to(out, " shear_rate={} shear_offset={}", box.shear_rate(), box.shear_offset());
+    fmt::format_to(out, "\n");
 
     const std::vector<std::uint32_t> index = p.index_of_tags();
     for (std::uint32_t i : index) {
         const Species& s = p.species_table[p.species[i]];
         const auto r = as_3d(p.position[i]);
-        const auto v = as_3d(p.velocity[i]);
+        const auto v = as_3d(f.lab_velocity(i));
         // An infinite mass comes out as "inf", the spelling Python's float() (and so ASE) reads.
         fmt::format_to(out, "{} {} {} {} {} {} {} {} {} {}\n", s.name, r[0], r[1], r[2], v[0], v[1],
                        v[2], s.radius, s.mass, p.tag[i]);

@@ -35,9 +35,11 @@ class GsdSource final : public FrameSource {
         const std::string where = fmt::format("{}: frame {}", reader_.path().string(), k);
         Frame f;
         f.dimension = g.dimensions;
-        if (g.box[3] != 0.0 || g.box[4] != 0.0 || g.box[5] != 0.0)
-            throw InputError(where + ": the box is tilted (triclinic); render draws "
-                                     "orthorhombic boxes only");
+        // xy alone is a Lees-Edwards run's offset over L_y: pedesis keeps its positions in
+        // the orthorhombic box, which is what is drawn
+        if (g.box[4] != 0.0 || g.box[5] != 0.0)
+            throw InputError(where + ": the box is tilted (xz or yz is not 0: triclinic); "
+                                     "render draws orthorhombic boxes only");
         for (int a = 0; a < 3; ++a) {
             const auto i = static_cast<std::size_t>(a);
             f.box_length[i] = a < f.dimension ? g.box[i] : 0.0;

@@ -7,6 +7,8 @@
 #include "pedesis/io/checkpoint_file.hpp"
 #include "pedesis/run/checkpoint_engines.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include <fstream>
@@ -15,8 +17,9 @@ namespace pedesis {
 
 namespace {
 
-// 3: the run's summed temperature; 4: active_ou's active velocities
-constexpr std::uint32_t soft_checkpoint_version = 4;
+// 3: the run's summed temperature; 4: active_ou's active velocities; 5: Lees-Edwards
+// shear (the rate, the box's offset and the list's, the velocity profile and P_xy series)
+constexpr std::uint32_t soft_checkpoint_version = 5;
 
 // The state's arrays in checkpoint order; one list serves saving and loading.
 template <class State, class F> void for_each_array(State& s, F&& f) {
@@ -52,6 +55,12 @@ void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>&
     binary::put(out, book.sum_polar_order);
     binary::put(out, book.sum_temperature);
     binary::put(out, s.active_velocity); // (empty without active_ou)
+    binary::put(out, s.box.shear_rate());
+    binary::put(out, s.box.shear_offset());
+    binary::put(out, evolver.list_shear_offset());
+    binary::put(out, book.shear.velocity_sum);
+    binary::put(out, book.shear.count);
+    binary::put(out, book.shear.shear_stress);
     file.commit();
 }
 
@@ -67,7 +76,7 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
         if (word != soft_checkpoint_magic) throw InputError(foreign_checkpoint(word, soft_engine));
         in.seekg(-static_cast<std::streamoff>(sizeof word), std::ios::cur);
         // (a version-3 file is this one without active velocities: runs before active_ou
-        // continue from theirs)
+        // continue from theirs; versions 3 and 4 have no shear)
         const std::uint32_t version =
             binary::get_header(in, soft_checkpoint_magic, soft_checkpoint_version, D,
                                "soft-engine (brownian, langevin, nve)", 3);
@@ -89,7 +98,26 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
         binary::get(in, book.sum_temperature);
         s.active_velocity.clear();
         if (version >= 4) binary::get(in, s.active_velocity);
+        double rate = 0.0, offset = 0.0, list_offset = 0.0;
+        book.shear = ShearRecord{};
+        if (version >= 5) {
+            binary::get(in, rate);
+            binary::get(in, offset);
+            binary::get(in, list_offset);
+            binary::get(in, book.shear.velocity_sum);
+            binary::get(in, book.shear.count);
+            binary::get(in, book.shear.shear_stress);
+        }
         file.finish();
+        if (book.shear.velocity_sum.size() != book.shear.count.size())
+            throw InputError("file is corrupt (velocity profile lengths differ)");
+        // (a corrupt rate or offset is refused by the box)
+        s.box.set_shear_rate(rate);
+        s.box.set_shear_offset(offset);
+        if (rate != c.shear_rate)
+            throw InputError(fmt::format("[box] shear_rate = {} in {} does not match the "
+                                         "checkpoint's, {}: a run continues at its own rate",
+                                         c.shear_rate, c.file, rate));
         const std::size_t n = s.p.position.size();
         if (s.p.velocity.size() != n || s.p.tag.size() != n || s.p.species.size() != n ||
             s.director.size() != n || s.force.size() != n || s.torque.size() != n ||
@@ -122,7 +150,7 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
                 if (s.box.length(a) != c.box_lengths[static_cast<std::size_t>(a)])
                     throw InputError("box does not match " + c.file);
         try {
-            evolver.restore_list(reference, builds);
+            evolver.restore_list(reference, builds, list_offset);
         } catch (const RunError& e) {
             // the list's positions come from the file: a bad one is a corrupt file (exit 2)
             throw InputError(std::string("corrupt neighbour-list state: ") + e.what());

@@ -4,6 +4,7 @@
 // the last neighbour-list build (rebuilding from them gives the same rows, hence the
 // same summation order) and the driver's own bookkeeping, so a restart continues bit for
 // bit.
+#include "pedesis/observe/shear_flow.hpp"
 #include "pedesis/setup/run_config.hpp"
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/soft_state.hpp"
@@ -20,6 +21,7 @@ template <int D> struct SoftRunBook {
     std::uint64_t samples = 0; // logged rows that enter the run averages
     double sum_pressure = 0.0, sum_polar_order = 0.0;
     double sum_temperature = 0.0; // inertial runs (langevin, nve)
+    ShearRecord shear;            // under Lees-Edwards shear
 };
 
 template <int D>

@@ -93,7 +93,13 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         : c_(complete_from_initial_file<D>(c, start ? &*start : nullptr)), o_(o),
           console_(console) {
         const std::vector<Species> table = species_table(c_);
-        if (!o_.restart) state_ = build_soft_state<D>(c_, start ? &*start : nullptr);
+        if (!o_.restart) {
+            state_ = build_soft_state<D>(c_, start ? &*start : nullptr);
+            if (c_.shear_rate > 0.0) {
+                state_.box.set_shear_rate(c_.shear_rate);
+                state_.box.shear_to_time(state_.time);
+            }
+        }
         start.reset(); // (the state holds the particles now)
         evolver_ = std::make_unique<Evolver<D>>(state_, c_.list_skin, c_.list_r_cut);
         evolver_->set_sort_interval(c_.sort_every);
@@ -116,6 +122,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         }
         check_walls(); // (a restored state has its box from here on)
         check_active_ou();
+        check_shear();
         read_observable_parameters(table);
         read_swim_forces();
         particles_ = state_.size();
@@ -190,7 +197,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         on_process_zero(o_.comm, [&] { save_soft_checkpoint(path, s, *evolver_, book_); });
     }
 
-    std::vector<const char*> stale_results() const override { return {"summary.json"}; }
+    std::vector<const char*> stale_results() const override {
+        if (c_.shear_rate > 0.0) return {"summary.json", "velocity_profile.csv"};
+        return {"summary.json"};
+    }
 
     std::vector<std::string> log_columns() const override {
         std::vector<std::string> c = {"step", "time", "polar_order", "msd", "potential_energy"};
@@ -221,6 +231,12 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         add_term_values(values);
         values.push_back(static_cast<double>(evolver_->list_builds()));
         if (state_.step > 0) {
+            if (state_.box.sheared()) {
+                // (one process: shear is refused under a decomposition)
+                book_.shear.add_profile(state_.p, state_.box);
+                book_.shear.shear_stress.push_back(m.ideal_tensor[3] + pair.virial_tensor[3] / V +
+                                                   m.active_tensor[3]);
+            }
             ++book_.samples;
             book_.sum_pressure += pressure;
             book_.sum_polar_order += m.order;
@@ -245,6 +261,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             console_ << fmt::format("  on the GPU: {}\n", device->description());
         else
             console_ << fmt::format("  CPU kernels: {}\n", simd_name(simd_level()));
+        if (state_.box.sheared())
+            console_ << fmt::format("  Lees–Edwards shear at rate {:g}: flow along x, gradient "
+                                    "along y, velocities peculiar\n",
+                                    state_.box.shear_rate());
         if (fresh) evolver_->compute_forces(); // so that frame 0 shows them; the step reuses them
         whole_current_ = false;
         wall_start_ = std::chrono::steady_clock::now();
@@ -295,6 +315,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             j["mean_temperature"] = book_.samples ? book_.sum_temperature / book_.samples : 0.0;
             j["degrees_of_freedom"] = k.total_freedom;
         }
+        if (state_.box.sheared()) j["shear"] = book_.shear.summary(state_.box.shear_rate());
         j["list_rebuilds"] = evolver_->list_builds();
         j["frames"] = book_.frames;
         j["wall_seconds"] = wall;
@@ -333,6 +354,19 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             console_ << fmt::format("  potential energy {:.6g}, MSD {:.6g}, mean pressure {:.6g}\n",
                                     last.at("potential_energy").template get<double>(), msd,
                                     mean_pressure);
+        if (state_.box.sheared()) {
+            write_file_atomically(o_.out_dir / "velocity_profile.csv", [&](std::ostream& out) {
+                book_.shear.write_profile(out, state_.box.lo(1), state_.box.length(1));
+            });
+            const nlohmann::json& eta = j.at("shear").at("viscosity");
+            if (!eta.at("value").is_null())
+                console_ << fmt::format(
+                    "  shear viscosity -<P_xy>/rate = {:.6g}{}\n",
+                    eta["value"].template get<double>(),
+                    eta["error"].is_null()
+                        ? std::string()
+                        : fmt::format(" +- {:.2g}", eta["error"].template get<double>()));
+        }
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
@@ -438,6 +472,28 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                                      column + ": give one [[force]] of each kind and shape");
                 seen.push_back(column);
             }
+    }
+
+    // Lees–Edwards shear runs on one process, on the CPU (gpu_model refuses it), and needs
+    // the streaming at the y faces, rate L_y / 2 per unit time, to move particles less
+    // than half the list's skin a step (else every step would rebuild the list, and the
+    // move check would call the flow a blow-up).
+    void check_shear() {
+        if (!state_.box.sheared()) return;
+        const std::string where = c_.shear_where.empty() ? c_.file : c_.shear_where;
+        if (o_.comm && o_.comm->size() > 1)
+            throw InputError(where + ": Lees–Edwards shear runs on one process: start it "
+                                     "without mpirun");
+        const double stream = 0.5 * state_.box.shear_rate() * state_.box.length(1) * c_.dt;
+        // (with no skin, the cutoff bounds a step's move: Evolver::step)
+        const double skin =
+            evolver_->skin() > 0.0 ? evolver_->skin() : evolver_->interaction_reach();
+        if (!(stream < 0.5 * skin))
+            throw InputError(fmt::format(
+                "{}: the flow moves particles at the y faces by shear_rate L_y dt / 2 = {:g} a "
+                "step, not less than half the neighbour list's skin ({:g}): lower dt or "
+                "shear_rate, or raise [neighbor_list] skin",
+                where, stream, skin));
     }
 
     // The log's one-body quantities at this instant; the tensors are pressure parts.

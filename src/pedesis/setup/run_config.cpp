@@ -55,6 +55,18 @@ void read_box(ConfigTable& t, RunConfig& c) {
             throw InputError(box->where("boundary") + ": '" + s + "' is not periodic or wall");
         c.periodic.push_back(s == "periodic");
     }
+    if (auto g = box->number("shear_rate")) {
+        c.shear_where = box->where("shear_rate");
+        if (!(std::isfinite(*g) && *g >= 0.0))
+            throw InputError(c.shear_where + ": must be a finite number >= 0 (the flow runs along "
+                                             "+x where y is larger)");
+        if (*g > 0.0 && !(c.periodic[0] && c.periodic[1]))
+            throw InputError(c.shear_where +
+                             ": Lees–Edwards shear needs periodic x (the flow) "
+                             "and y (the gradient) axes, and axis " +
+                             (c.periodic[0] ? "y" : "x") + " is a wall");
+        c.shear_rate = *g;
+    }
     box->finish();
 }
 
@@ -548,6 +560,9 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     c.species_defaults = defaults;
     read_species(root, c, defaults);
     check_particle_budget(c);
+    if (c.shear_rate > 0.0 && !c.soft())
+        throw InputError(c.shear_where + ": Lees–Edwards shear is not yet available for the " +
+                         c.dynamics + " engine (it runs with brownian, langevin and nve)");
     if (c.soft())
         read_soft_sections(doc, root, c);
     else

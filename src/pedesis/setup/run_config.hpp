@@ -42,6 +42,9 @@ struct RunConfig {
     std::vector<bool> periodic;
     std::string boundary_where; // "file:line:col: key 'box.boundary'" if given, for messages
     std::string lengths_where;  // of box.length or box.lengths, for messages
+    // [box] shear_rate: Lees-Edwards shear along x, gradient along y (0: none)
+    double shear_rate = 0.0;
+    std::string shear_where; // of box.shear_rate, for messages
 
     std::vector<SpeciesConfig> species;
     SpeciesConfig species_defaults; // from [initial], for species a soft run takes from its file
