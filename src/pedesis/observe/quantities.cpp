@@ -23,7 +23,8 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
         {"kinetic_energy_<species>", "energy", "kinetic energy of one species", hard},
         {"energy_fraction", "1", "kinetic energy over its initial value", hard},
         {"temperature", "energy",
-         "kinetic temperature 2 K / f, f the degrees of freedom (less the conserved momentum)",
+         "kinetic temperature 2 K / f, f the degrees of freedom (less the conserved momentum); "
+         "under [box] shear_rate, of the peculiar velocities (the co-moving frame)",
          inertial},
         {"temperature_<species>", "energy", "kinetic temperature of one species", hard},
         {"potential_energy", "energy",
@@ -89,7 +90,8 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
         {"pressure_zz", "energy / volume", "pressure tensor, diagonal component along z (3D)", all},
         {"pressure_xy", "energy / volume",
          "pressure tensor, off-diagonal component xy: kinetic part plus pair or collision "
-         "virial (walls push along their normal and add to the diagonal only)",
+         "virial (walls push along their normal and add to the diagonal only); under [box] "
+         "shear_rate the shear stress, -rate times the viscosity",
          all},
         {"pressure_xz", "energy / volume", "pressure tensor, off-diagonal component xz (3D)", all},
         {"pressure_yz", "energy / volume", "pressure tensor, off-diagonal component yz (3D)", all},
