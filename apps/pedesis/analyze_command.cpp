@@ -40,7 +40,7 @@ struct Kind {
     bool has_options; // options of its own, passed on to the module to check
 };
 
-constexpr std::array<Kind, 7> kinds{{
+constexpr std::array<Kind, 8> kinds{{
     {"speed",
      "Speed distribution of the final frame per species over Rayleigh (2D) / Maxwell (3D) at "
      "the measured temperature; prints the Kolmogorov-Smirnov distance",
@@ -49,8 +49,10 @@ constexpr std::array<Kind, 7> kinds{{
      "Energies, temperatures and pressures of log.csv against time (and collisions per "
      "particle)",
      true, Frames::none, false},
-    {"msd", "Mean squared displacement of a soft run against the free-ABP curve", true,
-     Frames::none, false},
+    {"msd",
+     "Mean squared displacement of log.csv; a brownian or langevin run against the free-ABP "
+     "curve",
+     true, Frames::none, false},
     {"order", "Polar order parameter of a soft run against time", true, Frames::none, false},
     {"structure", "g(r) over the last frames and S(q), direct and from g(r), of trajectory.gsd",
      false, Frames::gsd, false},
@@ -61,6 +63,10 @@ constexpr std::array<Kind, 7> kinds{{
      "Local area fraction histogram (phase separation: two peaks), largest dense cluster "
      "against time and cluster sizes; --cell, --contact, --min-neighbours",
      false, Frames::gsd, true},
+    {"transport",
+     "Running transport coefficients of [transport] (transport.csv) against the lag, with the "
+     "fit window, the values and errors of summary.json and Enskog's",
+     false, Frames::none, false},
 }};
 
 // Each kind's plot has its name in the one list a new run removes from its directory.

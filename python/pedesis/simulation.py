@@ -210,6 +210,26 @@ class Simulation:
         return False
 
     @property
+    def summary(self):
+        """The run directory's summary.json as a dict once the run has ended (run() to its
+        stop condition, or close()); None before."""
+        import json
+        import os
+        if not self._run.closed or self.out_dir is None:
+            return None
+        with open(os.path.join(str(self.out_dir), "summary.json")) as f:
+            return json.load(f)
+
+    @property
+    def transport(self):
+        """The transport coefficients of a run with [transport] (summary.json's
+        "transport": {"diffusion": {"value": ..., "error": ...}, "shear_viscosity",
+        "bulk_viscosity", "thermal_conductivity", ...}, docs/formats.md) once the run has
+        ended; None before, or without [transport]."""
+        summary = self.summary
+        return None if summary is None else summary.get("transport")
+
+    @property
     def log(self):
         """The last row of log.csv as {quantity: value} (empty before the first)."""
         return dict(zip(self._run.log_names, self._run.last_log_row))

@@ -16,8 +16,8 @@ class Rerun : public ScratchDir {
 
 // the default names of pedesis analyze KIND and pedesis render (docs/analyze.md, docs/render.md)
 const std::vector<std::string> earlier_plots{
-    "speed_distribution.png", "thermo.png",     "msd.png",      "order.png",
-    "structure.png",          "bond_order.png", "clusters.png", "movie.mp4"};
+    "speed_distribution.png", "thermo.png",   "msd.png",       "order.png", "structure.png",
+    "bond_order.png",         "clusters.png", "transport.png", "movie.mp4"};
 
 // A small event run as event.toml and a small Brownian run as soft.toml.
 void Rerun::write_event_and_soft() {

@@ -21,7 +21,7 @@ class Subcommands : public ScratchDir {
 TEST_F(Subcommands, UnknownOnesAreNamedWithTheKnownOnes) {
     expect_message("analyze struct RUN",
                    "unknown subcommand 'struct' of 'pedesis analyze' (known: speed, thermo, msd, "
-                   "order, structure, bond_order, clusters)");
+                   "order, structure, bond_order, clusters, transport)");
     expect_message("runn cfg.toml", "unknown subcommand 'runn' of 'pedesis' (known: run, sweep, "
                                     "init, analyze, ");
     expect_message("bench evnt", "unknown subcommand 'evnt' of 'pedesis bench' (known: event, ");
@@ -86,6 +86,7 @@ TEST_F(Subcommands, OtherFaultsKeepTheirOwnMessage) {
     const CliResult help = run_pedesis("analyze --help", dir, 60);
     EXPECT_EQ(help.exit_code, 0) << help.output;
     EXPECT_NE(help.output.find("clusters"), std::string::npos) << help.output;
+    EXPECT_NE(help.output.find("transport"), std::string::npos) << help.output;
     const CliResult version = run_pedesis("--version", dir, 60);
     EXPECT_EQ(version.exit_code, 0) << version.output;
 }

@@ -179,7 +179,7 @@ TEST(MomentCorrelator, EqualsTheBruteForceMeanOverTheSamePairsAtEveryLag) {
 }
 
 TEST(MomentCorrelator, ManyChannelsTakeTheChunkedParallelPathAndStayExact) {
-    // 5000 channels: five chunks, the last one partial, and enough work to go parallel
+    // 5000 channels: five chunks, the last one partial
     const Series s = random_sums(300, 5000, 12);
     MomentCorrelator mc(5000, 0.5);
     feed(mc, s);

@@ -105,6 +105,44 @@ TEST(Theory, EnskogFrequencyAndHaff) {
     }
 }
 
+TEST(Theory, EnskogTransportMatchesThePublishedTable) {
+    // ../shared/PHYSICS.md (sigma = m = T = 1, Carnahan-Starling chi): D_E, eta_E, lambda_E
+    // at phi = 0.1, 0.3, 0.45, to the digits given (2e-3 relative)
+    const double table[3][4] = {
+        {0.1, 0.8662, 0.2232, 0.9526}, {0.3, 0.1518, 0.7311, 3.082}, {0.45, 0.05385, 2.355, 9.359}};
+    for (const auto& row : table) {
+        const double n = 6.0 * row[0] / std::numbers::pi;
+        const auto c = theory::enskog_transport(3, n, 1.0, 1.0, 1.0);
+        EXPECT_NEAR(c.diffusion, row[1], 2e-3 * row[1]) << row[0];
+        EXPECT_NEAR(c.shear_viscosity, row[2], 2e-3 * row[2]) << row[0];
+        EXPECT_NEAR(c.thermal_conductivity, row[3], 2e-3 * row[3]) << row[0];
+    }
+    // units: sigma = 2 at the same phi scales D by sigma, eta and lambda by 1/sigma^2; m = 4
+    // scales D and lambda by 1/2, eta by 2
+    const double n1 = 6.0 * 0.3 / std::numbers::pi;
+    const auto one = theory::enskog_transport(3, n1, 1.0, 1.0, 1.0);
+    const auto big = theory::enskog_transport(3, n1 / 8.0, 2.0, 1.0, 1.0);
+    EXPECT_NEAR(big.diffusion, 2.0 * one.diffusion, 1e-12);
+    EXPECT_NEAR(big.shear_viscosity, one.shear_viscosity / 4.0, 1e-12);
+    const auto heavy = theory::enskog_transport(3, n1, 1.0, 4.0, 1.0);
+    EXPECT_NEAR(heavy.thermal_conductivity, one.thermal_conductivity / 2.0, 1e-12);
+    EXPECT_NEAR(heavy.bulk_viscosity, 2.0 * one.bulk_viscosity, 1e-12);
+    // 3D bulk viscosity (4/9) sqrt(pi) n^2 chi; 2D: half the (8/pi) phi^2 chi eta0 term of
+    // eta_E doubled, i.e. kappa_E = (16/pi) phi^2 chi eta0 with eta0 = 1/(2 sqrt(pi))
+    const double chi3 = theory::contact_value(3, 0.3);
+    EXPECT_NEAR(one.bulk_viscosity, 4.0 / 9.0 * std::sqrt(std::numbers::pi) * n1 * n1 * chi3,
+                1e-12);
+    const double phi2 = 0.3, n2 = 4.0 * phi2 / std::numbers::pi;
+    const auto two = theory::enskog_transport(2, n2, 1.0, 1.0, 1.0);
+    const double chi2 = theory::contact_value(2, phi2);
+    EXPECT_NEAR(two.bulk_viscosity,
+                16.0 / std::numbers::pi * phi2 * phi2 * chi2 / (2.0 * std::sqrt(std::numbers::pi)),
+                1e-12);
+    EXPECT_NEAR(two.diffusion, 1.0 / (2.0 * n2 * std::sqrt(std::numbers::pi)) / chi2, 1e-12);
+    EXPECT_NEAR(theory::yeh_hummer(0.1, 1.0, 2.0, 10.0),
+                0.1 + 2.837297 / (6.0 * std::numbers::pi * 20.0), 1e-15);
+}
+
 TEST(Theory, KolmogorovSmirnov) {
     // exact quantiles of the distribution: distance at most 1/n
     const std::size_t n = 1000;

@@ -796,8 +796,7 @@ template <int D> const ParticleStore<D>& EventEngine<D>::lazy_particles() const 
 
 template <int D> std::vector<Vec<D>> EventEngine<D>::unwrapped_now() const {
     std::vector<Vec<D>> u(size());
-    for (std::size_t i = 0; i < size(); ++i)
-        u[i] = unwrapped<D>(box_, f_[i].x + f_[i].v * (now_ - f_[i].t), image_[i]);
+    for (std::size_t i = 0; i < size(); ++i) u[i] = unwrapped_now(i);
     return u;
 }
 

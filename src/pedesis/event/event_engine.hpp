@@ -102,8 +102,13 @@ template <int D> class EventEngine {
     // The periodic boxes particle i has crossed by the current time (the soft engine's
     // meaning: its unwrapped position is position_now(i) + image * L).
     std::array<std::int32_t, D> image_now(std::size_t i) const;
-    // Every particle's unwrapped position now, in storage order.
+    // Every particle's unwrapped position now, in storage order; one particle's.
     std::vector<Vec<D>> unwrapped_now() const;
+    Vec<D> unwrapped_now(std::size_t i) const {
+        return unwrapped<D>(box_, f_[i].x + f_[i].v * (now_ - f_[i].t), image_[i]);
+    }
+    // Particle i's current velocity.
+    const Vec<D>& velocity(std::size_t i) const { return f_[i].v; }
     // All particles at the current time, wrapped, in storage order; with `images`, their
     // image counts too.
     ParticleStore<D> snapshot(std::vector<std::array<std::int32_t, D>>* images = nullptr) const;

@@ -21,8 +21,6 @@ constexpr std::uint32_t version = 1;
 // checkpoint continues exactly on another machine. A chunk of x and of a ring row stays
 // in L1 while the lags are swept.
 constexpr std::size_t chunk = 1024;
-// Below this many channel-lag pairs a parallel region costs more than it saves.
-constexpr std::size_t parallel_min = std::size_t{1} << 15;
 
 // Far beyond any run, small enough that channels x points x 8 bytes cannot overflow.
 constexpr std::uint64_t max_channels = std::uint64_t{1} << 40;
@@ -158,14 +156,10 @@ void MultipleTau::accumulate(Level& L, std::size_t lo, std::size_t hi) {
             quad[k * P + j] = s2;
         }
     };
-    // Not even an inactive parallel region for few channels: its entry costs about a
-    // microsecond, more than the sums of a small correlator.
-    if (C * (hi - lo + 1) >= parallel_min) {
-#pragma omp parallel for schedule(static)
-        for (std::size_t k = 0; k < chunks; ++k) chunk_sums(k);
-    } else {
-        for (std::size_t k = 0; k < chunks; ++k) chunk_sums(k);
-    }
+    // On the caller's thread: a parallel region per sample left the other threads
+    // spinning between samples, which doubled the CPU time of an event-driven run (a
+    // single-threaded engine) with [transport] on 2 cores.
+    for (std::size_t k = 0; k < chunks; ++k) chunk_sums(k);
     for (std::size_t j = lo; j <= hi; ++j) {
         double s1 = 0.0, s2 = 0.0;
         for (std::size_t k = 0; k < chunks; ++k) {

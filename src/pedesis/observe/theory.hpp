@@ -36,6 +36,56 @@ inline double enskog_collision_frequency(int dim, double number_density, double 
     return pref * number_density * g * std::sqrt(T / m);
 }
 
+// Transport coefficients of one-component hard disks and spheres (diameter sigma, mass
+// m, temperature T, number density n), as in ../shared/PHYSICS.md and Python's
+// pedesis.analyze.enskog_transport. Dilute (Chapman-Enskog): 3D with the converged Sonine
+// factors, D0 = 1.018954 (3 / 8) / (n sigma^2) sqrt(T / (pi m)),
+// eta0 = 1.016034 (5 / 16) sqrt(m T / pi) / sigma^2,
+// lambda0 = 1.025218 (75 / 64) sqrt(T / (pi m)) / sigma^2; 2D first Sonine,
+// D0 = sqrt(T / (pi m)) / (2 n sigma), eta0 = sqrt(m T / pi) / (2 sigma),
+// lambda0 = 2 sqrt(T / (pi m)) / sigma. Enskog: D_E = D0 / chi;
+// 3D (y = 4 phi chi) eta_E = (eta0 / chi)(1 + 0.8 y + 0.7615 y^2),
+// lambda_E = (lambda0 / chi)(1 + 1.2 y + 0.7575 y^2), kappa_E = (4/9) n^2 sigma^4 chi
+// sqrt(pi m T); 2D eta_E = eta0 [1/chi + 2 phi + (1 + 8/pi) phi^2 chi],
+// lambda_E = lambda0 [1/chi + 3 phi + (9/4 + 4/pi) phi^2 chi],
+// kappa_E = (1/2) n^2 sigma^3 chi sqrt(pi m T). k_B = 1.
+struct TransportCoefficients {
+    double diffusion, shear_viscosity, bulk_viscosity, thermal_conductivity;
+};
+
+inline TransportCoefficients enskog_transport(int dim, double n, double sigma, double m, double T) {
+    const double pi = std::numbers::pi, root_pi = std::sqrt(pi);
+    const double phi = packing_fraction(dim, n, sigma), chi = contact_value(dim, phi);
+    const double speed = std::sqrt(T / m), sd = std::pow(sigma, dim);
+    const double d_unit = sigma * speed / (n * sd);
+    const double eta_unit = std::sqrt(m * T) / std::pow(sigma, dim - 1);
+    const double lambda_unit = speed / std::pow(sigma, dim - 1);
+    TransportCoefficients c{};
+    if (dim == 2) {
+        const double eta0 = eta_unit / (2.0 * root_pi), lambda0 = 2.0 * lambda_unit / root_pi;
+        c.diffusion = d_unit / (2.0 * root_pi) / chi;
+        c.shear_viscosity = eta0 * (1.0 / chi + 2.0 * phi + (1.0 + 8.0 / pi) * phi * phi * chi);
+        c.thermal_conductivity =
+            lambda0 * (1.0 / chi + 3.0 * phi + (2.25 + 4.0 / pi) * phi * phi * chi);
+        c.bulk_viscosity = 0.5 * root_pi * (n * sd) * (n * sd) * chi * eta_unit;
+    } else {
+        const double y = 4.0 * phi * chi;
+        const double eta0 = 1.016034 * 5.0 / (16.0 * root_pi) * eta_unit;
+        const double lambda0 = 1.025218 * 75.0 / (64.0 * root_pi) * lambda_unit;
+        c.diffusion = 1.018954 * 3.0 / (8.0 * root_pi) * d_unit / chi;
+        c.shear_viscosity = eta0 / chi * (1.0 + 0.8 * y + 0.7615 * y * y);
+        c.thermal_conductivity = lambda0 / chi * (1.0 + 1.2 * y + 0.7575 * y * y);
+        c.bulk_viscosity = 4.0 / 9.0 * root_pi * (n * sd) * (n * sd) * chi * eta_unit;
+    }
+    return c;
+}
+
+// The diffusion coefficient of an infinite system from that of a cubic periodic box of
+// edge L (Yeh & Hummer, J. Phys. Chem. B 108, 15873 (2004)): D + 2.837297 T / (6 pi eta L).
+inline double yeh_hummer(double d_box, double T, double shear_viscosity, double L) {
+    return d_box + 2.837297 * T / (6.0 * std::numbers::pi * shear_viscosity * L);
+}
+
 // Haff's law for homogeneous cooling with restitution xi; omega0 is the collision
 // frequency per particle at T0.
 inline double haff_temperature(int dim, double t, double T0, double omega0, double xi) {

@@ -180,6 +180,7 @@ void EinsteinEstimator::save(std::ostream& out) const {
     for (const auto& lags : block_lags_) binary::put(out, lags);
     binary::put(out, first_mean_);
     binary::put(out, last_mean_);
+    binary::put(out, window_);
 }
 
 EinsteinEstimator EinsteinEstimator::load(std::istream& in) {
@@ -213,6 +214,10 @@ EinsteinEstimator EinsteinEstimator::load(std::istream& in) {
     for (auto& lags : e.block_lags_) binary::get(in, lags);
     binary::get(in, e.first_mean_);
     binary::get(in, e.last_mean_);
+    binary::get(in, e.window_);
+    if (!(std::isfinite(e.window_.from) && std::isfinite(e.window_.to) && e.window_.from >= 0.0 &&
+          e.window_.to >= e.window_.from))
+        throw InputError("transport: corrupt fit window");
     const auto same = [&](const MomentCorrelator& c) {
         return c.channels() == channels && c.interval() == interval;
     };

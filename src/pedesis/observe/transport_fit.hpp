@@ -89,7 +89,10 @@ class EinsteinEstimator {
     // From the whole-run correlator; the running slope is the Einstein counterpart of a
     // Green-Kubo running integral: it levels off at the coefficient.
     std::vector<Row> rows() const;
-    FitWindow window() const { return fit_window(block_time()); }
+    // fit_window(block_time) unless set: a run that knows its flux's time scale fits
+    // there (run/transport_plan.cpp), within the block's [block_time/40, block_time/10].
+    FitWindow window() const { return window_.to > 0.0 ? window_ : fit_window(block_time()); }
+    void set_window(FitWindow w) { window_ = w; }
 
     double block_time() const { return static_cast<double>(block_steps_) * interval_; }
     // The coefficient of each whole block (with the whole run's drift, if removed).
@@ -115,6 +118,7 @@ class EinsteinEstimator {
     // with the whole run's drift
     std::vector<std::vector<MomentCorrelator::Lag>> block_lags_;
     double first_mean_ = 0.0, last_mean_ = 0.0; // the channels' mean at the first and last sample
+    FitWindow window_{0.0, 0.0};                // unset: fit_window(block_time)
 };
 
 } // namespace pedesis

@@ -12,7 +12,7 @@ struct AnalysisOutput {
     const char* file;
 };
 
-inline constexpr std::array<AnalysisOutput, 7> analysis_outputs{{
+inline constexpr std::array<AnalysisOutput, 8> analysis_outputs{{
     {"speed", "speed_distribution.png"},
     {"thermo", "thermo.png"},
     {"msd", "msd.png"},
@@ -20,6 +20,7 @@ inline constexpr std::array<AnalysisOutput, 7> analysis_outputs{{
     {"structure", "structure.png"},
     {"bond_order", "bond_order.png"},
     {"clusters", "clusters.png"},
+    {"transport", "transport.png"},
 }};
 
 inline constexpr const char* default_movie = "movie.mp4"; // pedesis render RUN_DIR

@@ -58,6 +58,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
             record_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
         this->keep_msd_origin(engine_->unwrapped_now(), engine_->time());
+        this->start_transport_if_asked(*engine_, engine_->lazy_particles(), 0.0);
         growing_ = c_.growth_rate > 0;
         const std::size_t n = engine_->size();
         t_end_ = c_.stop_time.value_or(std::numeric_limits<double>::infinity());
@@ -82,8 +83,17 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     double time() const override { return engine_->time(); }
 
     Advance advance(std::uint64_t /*until_step*/, double until_time) override {
-        limits_.time = std::min(until_time, t_end_);
-        const StopReason reason = engine_->run(limits_);
+        const double until = std::min(until_time, t_end_);
+        StopReason reason = StopReason::time;
+        // [transport]'s samples come at their own times, between the Simulation's
+        for (;;) {
+            const bool sampling = record_.transport && record_.transport->next_time() <= until;
+            limits_.time = sampling ? record_.transport->next_time() : until;
+            reason = engine_->run(limits_);
+            if (reason != StopReason::time || !sampling) break;
+            this->sample_transport(*engine_);
+            if (engine_->time() >= until) break;
+        }
         if (reason == StopReason::interrupted) return {}; // the Simulation sees the signal
         if (reason == StopReason::grown) announce_growth_end();
         const bool stop = (reason != StopReason::time && reason != StopReason::grown) ||
@@ -134,6 +144,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         nlohmann::json j = out_.summary(e.lazy_particles(), e.box(), e.time(), e.counters());
         j["cpu_kernels"] = simd_name(simd_level());
         j["msd"] = msd();
+        this->transport_summary(j, e.box(), e.lazy_particles());
         if (growing_) {
             const auto& g = e.growth();
             j["growth"] = {{"growing", g.growing},
@@ -157,6 +168,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
             j["stopped_by"].template get<std::string>(), e.time(), e.counters().pair_collisions,
             j["collisions_per_particle"].template get<double>());
         out_.print_summary(console_, j, e.box());
+        this->write_transport(j, e.box(), e.lazy_particles());
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 

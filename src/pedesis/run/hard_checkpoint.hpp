@@ -45,8 +45,14 @@ std::unique_ptr<Engine> load_hard_checkpoint(const std::filesystem::path& path, 
         binary::get(in, word);
         if (word != magic) throw InputError(foreign_checkpoint(word, engine));
         auto e = std::make_unique<Engine>(Engine::load(in, params));
-        s.load(in, file.has_more());
+        s.load(in);
+        // (checkpoints written before issue 51 end here)
+        if (file.has_more()) s.load_extension(in);
         file.finish();
+        const std::size_t n = particles_of(*e).size();
+        if ((!s.start.empty() && s.start.size() != n) ||
+            (s.transport && s.transport->plan().particles > n))
+            throw InputError("checkpoint: the run record does not fit the particles (corrupt)");
         // the event engine keeps each particle at its own last event: not wrapped
         check_restored_particles(particles_of(*e), e->box(), false);
         check_checkpoint_matches(particles_of(*e).species_table, e->box(), c);

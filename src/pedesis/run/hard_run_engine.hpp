@@ -6,6 +6,7 @@
 #include "pedesis/run/run_engine.hpp"
 #include "pedesis/run/run_options.hpp"
 #include "pedesis/run/simulation.hpp"
+#include "pedesis/run/transport_plan.hpp"
 #include "pedesis/setup/run_config.hpp"
 
 #include <ostream>
@@ -31,10 +32,59 @@ template <int D> class HardRunEngine : public RunEngine<D> {
     std::uint64_t frames() const override { return record_.frames; }
     void frame_written() override { ++record_.frames; }
     std::vector<const char*> stale_results() const override {
-        return {"summary.json", "speed_histogram.csv"};
+        return {"summary.json", "speed_histogram.csv", "transport.csv"};
     }
 
   protected:
+    // [transport]: starts the measurement at `now` unless the checkpoint carries one (a
+    // config without the table drops it); the engine keeps its flux moments from then on.
+    template <class Engine>
+    void start_transport_if_asked(Engine& e, const ParticleStore<D>& p, double step) {
+        if (!c_.transport.on) {
+            record_.transport.reset();
+            return;
+        }
+        if (!record_.transport)
+            record_.transport.emplace(start_transport<D>(c_, p, e.box(), e.time(), step));
+        e.track_flux_moments();
+        followed_ = followed_particles(p, record_.transport->plan().particles);
+        if (followed_.size() != record_.transport->plan().particles)
+            throw InputError(
+                c_.transport.where + ": the particles [transport] follows (tags below " +
+                std::to_string(record_.transport->plan().particles) + ") are not all there");
+    }
+    bool transport_due(double now, double step) const {
+        return record_.transport && now >= record_.transport->next_time() - 1e-9 * (step + 1e-300);
+    }
+    // One sample: G = V ∫ P dt (the kinetic integrals and the collision virial), H = ∫ J_q dt,
+    // the followed particles' unwrapped positions and velocities when due.
+    template <class Engine> void sample_transport(const Engine& e) {
+        auto& m = *record_.transport;
+        const FluxMoments<D> f = e.flux_moments();
+        SymTensor G{};
+        for (int s = 0; s < 6; ++s) G[s] = f.kinetic_integral[s] + e.counters().virial[s];
+        const Vec<D> H = f.heat_integral + f.heat_collisional;
+        positions_.clear();
+        velocities_.clear();
+        if (m.positions_due())
+            for (const auto i : followed_) positions_.push_back(e.unwrapped_now(i));
+        if (m.velocities_due())
+            for (const auto i : followed_) velocities_.push_back(e.velocity(i));
+        m.add(G, H, positions_, velocities_);
+    }
+    // summary.json's "transport", transport.csv and the printed lines, at the end.
+    void transport_summary(nlohmann::json& j, const Box<D>& box, const ParticleStore<D>& p) const {
+        if (!record_.transport) return;
+        const double T = j["time_averaged_temperature"].template get<double>();
+        j["transport"] = record_.transport->summary(transport_scales(c_, box, p, T));
+    }
+    void write_transport(const nlohmann::json& j, const Box<D>& box, const ParticleStore<D>& p) {
+        if (!record_.transport) return;
+        const double T = j["time_averaged_temperature"].template get<double>();
+        record_.transport->write_csv(o_.out_dir / "transport.csv", transport_scales(c_, box, p, T));
+        print_transport(console_, j["transport"]);
+    }
+
     // The MSD's origin: the unwrapped positions of a fresh start, or of the restart from a
     // checkpoint written before image counts (which the console is told).
     void keep_msd_origin(std::vector<Vec<D>> unwrapped, double t) {
@@ -67,6 +117,8 @@ template <int D> class HardRunEngine : public RunEngine<D> {
     std::ostream& console_;
     HardRunRecord<D> record_;
     HardRunOutput<D> out_;
+    std::vector<std::uint32_t> followed_;        // [transport]'s particles, storage indices
+    std::vector<Vec<D>> positions_, velocities_; // a sample's scratch
 };
 
 // The setup of a hard-particle engine's run (EventRunEngine, SteppedRunEngine).

@@ -19,7 +19,8 @@ namespace pedesis {
 
 namespace {
 
-// What follows the speed histogram in a checkpoint's run record: 1, the MSD's origin.
+// What follows the speed histogram in a checkpoint's run record: 1, the MSD's origin and
+// the transport measurement.
 constexpr std::uint32_t record_extension = 1;
 
 // Which definition the run-averaged pressure uses, for the printed summary.
@@ -44,9 +45,11 @@ template <int D> void HardRunRecord<D>::save(std::ostream& out) const {
     histogram.save(out);
     binary::put<std::uint32_t>(out, record_extension);
     binary::put(out, start);
+    binary::put<std::uint8_t>(out, transport.has_value());
+    if (transport) transport->save(out);
 }
 
-template <int D> void HardRunRecord<D>::load(std::istream& in, bool extended) {
+template <int D> void HardRunRecord<D>::load(std::istream& in) {
     binary::get(in, initial_kinetic);
     binary::get(in, integral_T_dt);
     binary::get(in, last_log_time);
@@ -57,12 +60,20 @@ template <int D> void HardRunRecord<D>::load(std::istream& in, bool extended) {
     binary::get(in, frames);
     histogram.load(in);
     start.clear();
-    if (!extended) return;
+    transport.reset();
+}
+
+template <int D> void HardRunRecord<D>::load_extension(std::istream& in) {
     std::uint32_t extension = 0;
     binary::get(in, extension);
     if (extension != record_extension)
         throw InputError("checkpoint: unknown run record extension " + std::to_string(extension));
     binary::get(in, start);
+    std::uint8_t measured = 0;
+    binary::get(in, measured);
+    if (measured > 1) throw InputError("checkpoint: corrupt run record");
+    transport.reset();
+    if (measured) transport.emplace(TransportMeasurement<D>::load(in, "checkpoint"));
 }
 
 template <int D>

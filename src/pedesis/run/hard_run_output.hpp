@@ -9,12 +9,14 @@
 #include "pedesis/observe/speed_histogram.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/run/run_options.hpp"
+#include "pedesis/run/transport_measurement.hpp"
 #include "pedesis/setup/run_config.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace pedesis {
@@ -38,6 +40,8 @@ template <int D> struct HardRunRecord {
     // Unwrapped positions at t = 0 in the engine's storage order: the MSD's origin. (A
     // checkpoint written before image counts had none: the origin is then the restart.)
     std::vector<Vec<D>> start;
+    // [transport]'s measurement so far (none without the table)
+    std::optional<TransportMeasurement<D>> transport;
 
     // the kinetic state at t = 0 of a fresh run
     void start_from(const SpeciesKinetics& k) {
@@ -52,8 +56,10 @@ template <int D> struct HardRunRecord {
         return m;
     }
     void save(std::ostream& out) const;
-    // `extended`: the fields after the histogram are there (checkpoints since issue 51).
-    void load(std::istream& in, bool extended);
+    // The fields up to the histogram; then, in checkpoints since issue 51, the extension
+    // (the MSD's origin and the transport measurement).
+    void load(std::istream& in);
+    void load_extension(std::istream& in);
 };
 
 // The mean over the mobile particles (finite mass) of |r(t) - r(0)|^2, from unwrapped

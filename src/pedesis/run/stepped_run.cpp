@@ -87,6 +87,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
             record_.histogram = SpeedHistogram(c_.species.size(), c_.histogram_bins);
         }
         this->keep_msd_origin(unwrapped_now(), engine_->time());
+        this->start_transport_if_asked(*engine_, engine_->particles(), engine_->dt());
         if (c_.stop_collisions_per_particle)
             collision_limit_ = static_cast<std::uint64_t>(
                 std::ceil(*c_.stop_collisions_per_particle * static_cast<double>(engine_->size())));
@@ -102,7 +103,10 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
     double time() const override { return engine_->time(); }
 
     Advance advance(std::uint64_t, double) override {
+        // [transport]'s samples fall on steps (its interval is a whole number of them)
+        if (this->transport_due(engine_->time(), engine_->dt())) this->sample_transport(*engine_);
         engine_->step();
+        if (this->transport_due(engine_->time(), engine_->dt())) this->sample_transport(*engine_);
         return {stop_reason(), false};
     }
 
@@ -166,6 +170,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
         const auto C = e.counters().pair_collisions;
         j["dynamics"] = "stepped";
         j["msd"] = msd();
+        this->transport_summary(j, e.box(), e.particles());
         j["dt"] = e.dt();
         j["steps"] = e.steps();
         j["max_move"] = c_.max_move;
@@ -186,6 +191,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
                                 e.counters().pair_collisions,
                                 j["collisions_per_particle"].template get<double>());
         out_.print_summary(console_, j, e.box());
+        this->write_transport(j, e.box(), e.particles());
         console_ << fmt::format(
             "  late collisions    {} ({:.3g} of all: from an overlap left by a grazing "
             "collision missed within a step; fewer with a smaller dt)\n",

@@ -567,6 +567,7 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
         read_soft_sections(doc, root, c);
     else
         read_event_sections(doc, root, c);
+    read_transport_config(root, c.transport);
     if (auto log = root.table("log")) {
         if (log->has("quantities")) {
             const toml::node* n = doc["log"]["quantities"].node();

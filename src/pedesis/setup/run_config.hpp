@@ -1,6 +1,7 @@
 #pragma once
 // The contents of a run's TOML config, validated. Every key is documented in
 // docs/config.md; unknown keys are errors.
+#include "pedesis/setup/transport_config.hpp"
 #include "pedesis/soft/plugin_spec.hpp"
 
 #include <cstdint>
@@ -101,6 +102,8 @@ struct RunConfig {
     std::uint64_t log_every = 100;
     std::uint64_t snapshot_every = 0;   // 0: first and last frame only
     std::uint64_t checkpoint_every = 0; // 0: only at the end
+
+    TransportConfig transport; // [transport]
 };
 
 // Whether `name` can name a species: 1 to 64 of A-Z a-z 0-9 _ - . + (it names log

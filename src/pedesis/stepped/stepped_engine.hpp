@@ -76,6 +76,10 @@ template <int D> class SteppedEngine {
     const ParticleStore<D>& particles() const { return p_; }
     // the periodic boxes each particle has crossed (unwrapped: position + image * L)
     const std::vector<ImageCount<D>>& images() const { return image_; }
+    Vec<D> unwrapped_now(std::size_t i) const {
+        return unwrapped<D>(box_, p_.position[i], image_[i]);
+    }
+    const Vec<D>& velocity(std::size_t i) const { return p_.velocity[i]; }
     const EventCounters<D>& counters() const { return counters_; }
     // From now on, keeps the running integrals of the Helfand moments (core/flux_moments.hpp),
     // each collision at its own time within the step, for [transport]. Idempotent.

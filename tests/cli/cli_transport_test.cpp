@@ -1,0 +1,141 @@
+// [transport] from the command line (run/transport_measurement.hpp): the coefficients of a
+// dilute hard-sphere gas against Chapman-Enskog (Enskog at n sigma^3 = 0.1, where it is
+// within a few per cent of molecular dynamics), the stepped engine against the event
+// engine on one system, a restart that continues the measurement bit for bit, and the
+// refusals.
+#include "cli/cli_support.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace pedesis::test {
+namespace {
+
+std::string hard_gas(const std::string& dynamics, int dim, double length, int count, double time,
+                     const std::string& extra = "", const std::string& box_extra = "",
+                     const std::string& stop = "") {
+    std::ostringstream c;
+    c << "dimension = " << dim << "\ndynamics = \"" << dynamics
+      << "\"\nseed = 5\n[box]\nlengths = [";
+    for (int a = 0; a < dim; ++a) c << (a ? ", " : "") << length;
+    c << "]\n"
+      << box_extra << "[[species]]\nname = \"a\"\ncount = " << count << "\nradius = 0.5\n[run]\n";
+    if (stop.empty())
+        c << "time = " << time;
+    else
+        c << stop;
+    c << "\n[output]\nlog_interval = 100.0\nformats = []\n";
+    if (dynamics == "stepped") c << "[stepped]\ndt = 0.01\n";
+    c << "[transport]\n" << extra;
+    return c.str();
+}
+
+class CliTransport : public ScratchDir {
+  protected:
+    nlohmann::json transport(const std::string& out) {
+        return nlohmann::json::parse(read(out + "/summary.json")).at("transport");
+    }
+};
+
+// |value - reference| within 4 standard errors plus `slack` of the reference
+void expect_near_reference(const nlohmann::json& c, double reference, double slack,
+                           const char* what) {
+    const double v = c.at("value").get<double>(), e = c.at("error").get<double>();
+    EXPECT_GT(e, 0.0) << what;
+    EXPECT_NEAR(v, reference, 4.0 * e + slack * reference) << what << ": error " << e;
+}
+
+TEST_F(CliTransport, DiluteHardSpheresGiveEnskogsCoefficients) {
+    // n = 0.1 (400 spheres in 15.874^3), 1600 mean free times: Enskog's D, eta, lambda
+    // (../shared/PHYSICS.md) are within about 2 % of molecular dynamics here; tolerance 4
+    // standard errors plus 5 %. A factor 2 (V T for 2 V T), a missing 1/T or a wrong
+    // dimension of the block sums would fail.
+    write("gas.toml", hard_gas("event", 3, 15.874, 400, 2000.0));
+    const CliResult r = run_pedesis("run gas.toml --out gas", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto t = transport("gas");
+    const double n = 400.0 / std::pow(15.874, 3);
+    ASSERT_NEAR(n, 0.1, 1e-4);
+    const auto& enskog = t.at("enskog");
+    // Enskog at n = 0.1 (phi = 0.0524, chi = 1.146): from the formulas, by hand
+    EXPECT_NEAR(enskog.at("diffusion").get<double>(), 1.8839, 2e-3);
+    EXPECT_NEAR(enskog.at("shear_viscosity").get<double>(), 0.19341, 2e-4);
+    EXPECT_NEAR(enskog.at("thermal_conductivity").get<double>(), 0.78848, 1e-3);
+    expect_near_reference(t.at("diffusion"), 1.8839, 0.05, "D");
+    expect_near_reference(t.at("shear_viscosity"), 0.19341, 0.05, "eta");
+    expect_near_reference(t.at("thermal_conductivity"), 0.78848, 0.05, "lambda");
+    // the bulk viscosity is small in a dilute gas (Enskog 0.0090: collisional only)
+    expect_near_reference(t.at("bulk_viscosity"), 0.0090145, 0.2, "bulk viscosity");
+    // Yeh-Hummer: D + 2.837297 T / (6 pi eta L)
+    const double eta = t.at("shear_viscosity").at("value").get<double>();
+    EXPECT_NEAR(
+        t.at("diffusion_infinite").at("value").get<double>(),
+        t.at("diffusion").at("value").get<double>() + 2.837297 / (6.0 * M_PI * eta * 15.874), 1e-9);
+    EXPECT_EQ(t.at("blocks").get<int>(), 8);
+    EXPECT_NEAR(t.at("fit_window").at("to").get<double>(), t.at("block_time").get<double>() / 10.0,
+                1e-9);
+    // the printed lines and transport.csv's long format
+    EXPECT_NE(r.output.find("shear viscosity"), std::string::npos) << r.output;
+    const std::string csv = read("gas/transport.csv");
+    EXPECT_EQ(csv.rfind("quantity,lag,correlation,running_coefficient\n", 0), 0u);
+    for (const char* q :
+         {"\ndiffusion,", "\nshear_viscosity,", "\nbulk_viscosity,", "\nthermal_conductivity,"})
+        EXPECT_NE(csv.find(q), std::string::npos) << q;
+}
+
+TEST_F(CliTransport, SteppedAndEventEnginesAgreeOnHardDisks) {
+    // 480 disks in 40 x 40 (phi = 0.236): the two engines' D and eta within 4 combined errors
+    write("event.toml", hard_gas("event", 2, 40.0, 480, 400.0));
+    write("stepped.toml", hard_gas("stepped", 2, 40.0, 480, 400.0));
+    ASSERT_EQ(run_pedesis("run event.toml --out event", dir).exit_code, 0);
+    const CliResult s = run_pedesis("run stepped.toml --out stepped", dir);
+    ASSERT_EQ(s.exit_code, 0) << s.output;
+    const auto a = transport("event"), b = transport("stepped");
+    for (const char* k : {"diffusion", "shear_viscosity", "thermal_conductivity"}) {
+        const double va = a.at(k).at("value").get<double>(), vb = b.at(k).at("value").get<double>();
+        const double e =
+            std::hypot(a.at(k).at("error").get<double>(), b.at(k).at("error").get<double>());
+        EXPECT_NEAR(va, vb, 4.0 * e) << k;
+    }
+    EXPECT_FALSE(b.contains("diffusion_infinite")) << "2D has no Yeh-Hummer correction";
+    // the stepped engine samples on whole steps
+    const double interval = b.at("interval").get<double>();
+    EXPECT_NEAR(interval / 0.01, std::round(interval / 0.01), 1e-9);
+}
+
+TEST_F(CliTransport, ARestartContinuesTheMeasurementBitForBit) {
+    for (const char* dynamics : {"event", "stepped"}) {
+        const std::string d = dynamics;
+        write(d + ".toml", hard_gas(d, 2, 30.0, 200, 200.0, "block_time = 50.0\n"));
+        write(d + "_half.toml", hard_gas(d, 2, 30.0, 200, 100.0, "block_time = 50.0\n"));
+        ASSERT_EQ(run_pedesis("run " + d + ".toml --out whole", dir).exit_code, 0);
+        ASSERT_EQ(run_pedesis("run " + d + "_half.toml --out half", dir).exit_code, 0);
+        const CliResult r =
+            run_pedesis("run " + d + ".toml --restart half/checkpoint.bin --out rest", dir);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_EQ(transport("whole").dump(), transport("rest").dump()) << dynamics;
+        EXPECT_EQ(read("whole/transport.csv"), read("rest/transport.csv")) << dynamics;
+    }
+}
+
+TEST_F(CliTransport, RefusesWhatItCannotMeasure) {
+    expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "", "boundary = \"wall\"\n"),
+                    {"table 'transport'", "periodic box"});
+    expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "blocks = 0\n"),
+                    {"transport.blocks", "1 to 10000"});
+    expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "interval = -1\n"),
+                    {"transport.interval", "positive time"});
+    expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "lag = 3\n"), {"transport.lag"});
+    // 8 blocks of 1.25 time units hold fewer than 20 samples of the particles
+    expect_rejected(hard_gas("event", 2, 30.0, 100, 10.0), {"fewer than 20 samples"});
+    // no [run] time: the blocks need a length
+    const std::string by_collisions =
+        hard_gas("event", 2, 30.0, 100, 100.0, "", "", "collisions_per_particle = 50");
+    expect_rejected(by_collisions, {"give block_time"});
+}
+
+} // namespace
+} // namespace pedesis::test
