@@ -242,8 +242,13 @@ template <int D, class Pair, bool Padded>
         // Full iterations need no lane mask and read their four candidates straight; the
         // row's last, partial one (Tail) repeats its first candidate in the lanes past the
         // end, with no force. (The split saved about a tenth of the loop's instructions:
-        // in.lj 1.05x, docs/performance.md.)
-        auto four = [&]<bool Tail>(const std::uint32_t* it, std::ptrdiff_t left) {
+        // in.lj 1.05x, docs/performance.md.) always_inline like the kernel: a lambda does
+        // not take its caller's target, so GCC, where it judged one too big to inline (the
+        // partial one, once the shear's lines came in, and only in some translation
+        // units), called a copy compiled for SSE2 without fused multiply-adds, whose last
+        // bits differed from the set's, and the CLI from the Python module.
+        auto four = [&]<bool Tail>(const std::uint32_t* it, std::ptrdiff_t left)
+            __attribute__((always_inline)) {
             std::uint32_t j[4];
             for (int l = 0; l < 4; ++l) j[l] = Tail ? it[l < left ? l : 0] : it[l];
             lanes4 d[D];
