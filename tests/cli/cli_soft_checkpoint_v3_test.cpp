@@ -2,7 +2,8 @@
 // version 4) and 4 (before Lees-Edwards shear added its block, version 5) still restore:
 // a version-5 checkpoint of an unsheared run without active_ou is turned into the file an
 // older pedesis wrote (the engine version, without the trailing shear block of two
-// numbers for the offsets, the rate and three empty arrays, and for version 3 without the
+// numbers for the offsets, the rate and three empty arrays and the [transport] flag that
+// follows it, and for version 3 without the
 // empty array of active velocities before it, envelope length and CRC redone), and the
 // restart from it must continue the run bit for bit, as from the version-5 file.
 #include "cli/cli_support.hpp"
@@ -40,10 +41,12 @@ std::string as_version(const std::string& file, std::uint32_t older) {
     std::memcpy(&version, payload.data() + 8, 4); // after the engine's 8-byte magic
     EXPECT_EQ(version, 5u);
     std::memcpy(payload.data() + 8, &older, 4);
-    // the shear block: rate, offset, the list's offset (all 0), three empty arrays
-    std::string shear(48, '\0');
-    EXPECT_EQ(payload.substr(payload.size() - 48), shear) << "the run should be unsheared";
-    payload.resize(payload.size() - 48);
+    // the shear block: rate, offset, the list's offset (all 0), three empty arrays; then
+    // the [transport] flag (0)
+    std::string shear(49, '\0');
+    EXPECT_EQ(payload.substr(payload.size() - 49), shear)
+        << "the run should be unsheared, without [transport]";
+    payload.resize(payload.size() - 49);
     if (older == 3) {
         std::uint64_t empty = 1;
         std::memcpy(&empty, payload.data() + payload.size() - 8, 8);

@@ -32,6 +32,7 @@ CASES = (
     ("hard_sphere_transport", transport.hard_sphere_transport, True),
     ("dilute_transport", transport.dilute_transport, False),
     ("hard_disk_transport", transport.hard_disk_transport, True),
+    ("wca_viscosity", transport.wca_viscosity, True),
 )
 
 __all__ = ["CASES", "CaseError", "CaseResult", "Check"]

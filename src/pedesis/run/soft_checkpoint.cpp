@@ -19,6 +19,7 @@ namespace {
 
 // 3: the run's summed temperature; 4: active_ou's active velocities; 5: Lees-Edwards
 // shear (the rate, the box's offset and the list's, the velocity profile and P_xy series)
+// and the [transport] measurement
 constexpr std::uint32_t soft_checkpoint_version = 5;
 
 // The state's arrays in checkpoint order; one list serves saving and loading.
@@ -61,6 +62,8 @@ void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>&
     binary::put(out, book.shear.velocity_sum);
     binary::put(out, book.shear.count);
     binary::put(out, book.shear.shear_stress);
+    binary::put<std::uint8_t>(out, book.transport.has_value());
+    if (book.transport) book.transport->save(out);
     file.commit();
 }
 
@@ -108,6 +111,13 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
             binary::get(in, book.shear.count);
             binary::get(in, book.shear.shear_stress);
         }
+        book.transport.reset();
+        if (version >= 5) {
+            std::uint8_t measured = 0;
+            binary::get(in, measured);
+            if (measured > 1) throw InputError("file is corrupt (transport flag)");
+            if (measured) book.transport.emplace(TransportMeasurement<D>::load(in, "checkpoint"));
+        }
         file.finish();
         if (book.shear.velocity_sum.size() != book.shear.count.size())
             throw InputError("file is corrupt (velocity profile lengths differ)");
@@ -123,7 +133,8 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
             s.director.size() != n || s.force.size() != n || s.torque.size() != n ||
             s.image.size() != n || book.start.size() != n ||
             (!s.active_velocity.empty() && s.active_velocity.size() != n) ||
-            (!reference.empty() && reference.size() != n))
+            (!reference.empty() && reference.size() != n) ||
+            (book.transport && book.transport->plan().particles > n))
             throw InputError("file is corrupt (array lengths differ)");
         check_restored_particles(s.p, s.box, true);
         for (std::size_t i = 0; i < n; ++i)

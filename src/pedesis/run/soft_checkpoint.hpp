@@ -5,11 +5,13 @@
 // same summation order) and the driver's own bookkeeping, so a restart continues bit for
 // bit.
 #include "pedesis/observe/shear_flow.hpp"
+#include "pedesis/run/transport_measurement.hpp"
 #include "pedesis/setup/run_config.hpp"
 #include "pedesis/soft/evolver.hpp"
 #include "pedesis/soft/soft_state.hpp"
 
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 namespace pedesis {
@@ -22,6 +24,8 @@ template <int D> struct SoftRunBook {
     double sum_pressure = 0.0, sum_polar_order = 0.0;
     double sum_temperature = 0.0; // inertial runs (langevin, nve)
     ShearRecord shear;            // under Lees-Edwards shear
+    // [transport]'s measurement so far (none without the table)
+    std::optional<TransportMeasurement<D>> transport;
 };
 
 template <int D>

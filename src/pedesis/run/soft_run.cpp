@@ -8,6 +8,7 @@
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/run/simulation.hpp"
 #include "pedesis/run/soft_checkpoint.hpp"
+#include "pedesis/run/transport_plan.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/build_system.hpp"
 #include "pedesis/soft/active_ou.hpp"
@@ -125,6 +126,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         check_shear();
         read_observable_parameters(table);
         read_swim_forces();
+        start_transport_if_asked(); // (after the above: it asks whether the run is inertial)
         particles_ = state_.size();
         if (o_.comm && o_.comm->size() > 1) {
             // what measured_shared needs of the whole system, which does not change
@@ -177,8 +179,17 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         const auto begin = std::chrono::steady_clock::now();
         const double comm_begin = o_.comm ? o_.comm->seconds() : 0.0;
         const double bytes_begin = o_.comm ? o_.comm->bytes_sent() : 0.0;
-        evolve_until(state_, *evolver_, SoftClock{time_start_, step_start_, c_.dt},
-                     std::min<std::uint64_t>(until_step, c_.steps), until_time);
+        const std::uint64_t last = std::min<std::uint64_t>(until_step, c_.steps);
+        // [transport]'s samples fall on their own steps, between the Simulation's
+        for (;;) {
+            const std::uint64_t target = book_.transport ? std::min(last, transport_step()) : last;
+            if (state_.step < target)
+                evolve_until(state_, *evolver_, SoftClock{time_start_, step_start_, c_.dt}, target,
+                             until_time);
+            if (state_.step < target) break; // a signal, or until_time
+            if (book_.transport && state_.step == transport_step()) sample_transport();
+            if (state_.step >= last) break;
+        }
         stepping_.seconds +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
         if (o_.comm) {
@@ -199,6 +210,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     std::vector<const char*> stale_results() const override {
         if (c_.shear_rate > 0.0) return {"summary.json", "velocity_profile.csv"};
+        if (c_.transport.on) return {"summary.json", "transport.csv"};
         return {"summary.json"};
     }
 
@@ -316,6 +328,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             j["degrees_of_freedom"] = k.total_freedom;
         }
         if (state_.box.sheared()) j["shear"] = book_.shear.summary(state_.box.shear_rate());
+        if (book_.transport)
+            j["transport"] = book_.transport->summary(transport_scales(
+                c_, state_.box, whole_state.p, j["mean_temperature"].template get<double>()));
         j["list_rebuilds"] = evolver_->list_builds();
         j["frames"] = book_.frames;
         j["wall_seconds"] = wall;
@@ -366,6 +381,13 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                     eta["error"].is_null()
                         ? std::string()
                         : fmt::format(" +- {:.2g}", eta["error"].template get<double>()));
+        }
+        if (book_.transport) {
+            book_.transport->write_csv(
+                o_.out_dir / "transport.csv",
+                transport_scales(c_, state_.box, whole().p,
+                                 j["mean_temperature"].template get<double>()));
+            print_transport(console_, j["transport"]);
         }
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
@@ -472,6 +494,61 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                                      column + ": give one [[force]] of each kind and shape");
                 seen.push_back(column);
             }
+    }
+
+    // [transport]: D, eta and kappa of inertial dynamics, on one process on the CPU,
+    // without shear (under shear summary.json's "shear" gives eta); the measurement
+    // starts now unless the checkpoint carries one.
+    void start_transport_if_asked() {
+        if (!c_.transport.on) {
+            book_.transport.reset();
+            return;
+        }
+        const std::string& where = c_.transport.where;
+        if (!inertial())
+            throw InputError(where + ": transport coefficients need dynamics that carry "
+                                     "momentum (langevin or nve); a brownian run's D is the "
+                                     "slope of its msd column");
+        if ((o_.comm && o_.comm->size() > 1) || on_gpu())
+            throw InputError(where + ": [transport] runs on one process, on the CPU");
+        if (state_.box.sheared())
+            throw InputError(where + ": not under shear: summary.json's \"shear\" gives the "
+                                     "viscosity of a sheared run");
+        if (!book_.transport) {
+            double contact = 0.0; // the potential's core between like particles
+            for (const auto& f : evolver_->forces())
+                contact = std::max(contact, f->core(state_, 0, 0));
+            book_.transport.emplace(
+                start_transport<D>(c_, state_.p, state_.box, state_.time, c_.dt, contact));
+        }
+        const auto& plan = book_.transport->plan();
+        per_sample_ = static_cast<std::uint64_t>(std::max(1.0, std::round(plan.interval / c_.dt)));
+        // (a run's clock is step x dt from its start: the measurement's start is a step)
+        first_sample_ = static_cast<std::uint64_t>(std::max(0.0, std::round(plan.start / c_.dt)));
+    }
+    std::uint64_t transport_step() const {
+        return first_sample_ + book_.transport->samples() * per_sample_;
+    }
+    // The pressure tensor times V (kinetic and pair virial), and the followed particles by
+    // tag (the storage order changes with sorting).
+    void sample_transport() {
+        auto& m = *book_.transport;
+        SymTensor vp = evolver_->pair_totals().virial_tensor;
+        for (std::size_t i = 0; i < state_.size(); ++i) {
+            const double mass = state_.p.mass(i);
+            if (std::isfinite(mass))
+                add_sym_outer<D>(vp, state_.p.velocity[i], state_.p.velocity[i], mass);
+        }
+        const std::size_t k = m.plan().particles;
+        positions_.assign(m.positions_due() ? k : 0, Vec<D>{});
+        velocities_.assign(m.velocities_due() ? k : 0, Vec<D>{});
+        for (std::size_t i = 0; i < state_.size(); ++i) {
+            const std::uint32_t tag = state_.p.tag[i];
+            if (tag >= k) continue;
+            if (!positions_.empty()) positions_[tag] = state_.unwrapped(i);
+            if (!velocities_.empty()) velocities_[tag] = state_.p.velocity[i];
+        }
+        m.add_flux(vp, positions_, velocities_);
     }
 
     // Lees–Edwards shear runs on one process, on the CPU (gpu_model refuses it), and needs
@@ -722,6 +799,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     const Momentum momentum_ = momentum_of(c_);
     std::uint64_t step_start_ = 0;
     double time_start_ = 0.0;
+    std::uint64_t per_sample_ = 1, first_sample_ = 0; // [transport]'s steps
+    std::vector<Vec<D>> positions_, velocities_;      // a sample's followed particles
     std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
     std::optional<std::chrono::steady_clock::time_point> last_progress_;
 };

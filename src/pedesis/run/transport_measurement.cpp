@@ -127,12 +127,21 @@ void TransportMeasurement<D>::add(const SymTensor& G, const Vec<D>& H,
     ++samples_;
 }
 
+template <int D>
+void TransportMeasurement<D>::add_flux(const SymTensor& volume_times_pressure,
+                                       const std::vector<Vec<D>>& unwrapped,
+                                       const std::vector<Vec<D>>& velocities) {
+    for (int c = 0; c < 6; ++c) flux_integral_[c] += volume_times_pressure[c] * plan_.interval;
+    add(flux_integral_, Vec<D>{}, unwrapped, velocities);
+}
+
 template <int D> nlohmann::json TransportMeasurement<D>::summary(const Scales& s) const {
     const double VT = s.volume * s.temperature;
     nlohmann::json j;
     const Estimate shear = shear_->estimate();
     j["shear_viscosity"] = coefficient(shear, 1.0 / VT);
-    j["bulk_viscosity"] = coefficient(bulk_->estimate(), 1.0 / VT);
+    j["bulk_viscosity"] =
+        s.bulk_missing.empty() ? coefficient(bulk_->estimate(), 1.0 / VT) : missing(s.bulk_missing);
     if (heat_)
         j["thermal_conductivity"] = coefficient(heat_->estimate(), 1.0 / (VT * s.temperature));
     else
@@ -204,7 +213,7 @@ void TransportMeasurement<D>::write_csv(const std::filesystem::path& path, const
         };
         if (diffusion_) rows("diffusion", *diffusion_, D, 1.0);
         rows("shear_viscosity", *shear_, 1.0, 1.0 / VT);
-        rows("bulk_viscosity", *bulk_, 1.0, 1.0 / VT);
+        if (s.bulk_missing.empty()) rows("bulk_viscosity", *bulk_, 1.0, 1.0 / VT);
         if (heat_) rows("thermal_conductivity", *heat_, 1.0, 1.0 / (VT * s.temperature));
         if (vacf_) {
             const auto lags = vacf_->lags();
@@ -228,6 +237,7 @@ template <int D> void TransportMeasurement<D>::save(std::ostream& out) const {
     binary::put<std::uint8_t>(out, plan_.vacf);
     binary::put(out, plan_.time_scale);
     binary::put(out, samples_);
+    binary::put(out, flux_integral_);
     shear_->save(out);
     bulk_->save(out);
     put_optional(out, heat_);
@@ -255,6 +265,7 @@ TransportMeasurement<D> TransportMeasurement<D>::load(std::istream& in, const st
     binary::get(in, vacf);
     binary::get(in, m.plan_.time_scale);
     binary::get(in, m.samples_);
+    binary::get(in, m.flux_integral_);
     m.plan_.particles = particles;
     m.plan_.heat = heat != 0;
     m.plan_.vacf = vacf != 0;

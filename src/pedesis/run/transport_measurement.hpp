@@ -49,12 +49,14 @@ template <int D> class TransportMeasurement {
         double cube_edge = 0.0; // the box's edge if cubic (Yeh-Hummer), else 0
         std::optional<theory::TransportCoefficients> enskog;
         std::string heat_missing; // why no thermal conductivity, if none
+        std::string bulk_missing; // why no bulk viscosity, if none
     };
 
     // InputError (naming `where`) if a block holds fewer than 20 samples of a moment.
     TransportMeasurement(const Plan& plan, const std::string& where);
 
     const Plan& plan() const { return plan_; }
+    std::uint64_t samples() const { return samples_; }
     // Whether the fit window is the block's (the run too short for [20, 80] time scales).
     bool window_limited() const;
     double next_time() const {
@@ -67,6 +69,12 @@ template <int D> class TransportMeasurement {
     // positions (if positions_due()) and velocities (if velocities_due()), else empty.
     void add(const SymTensor& G, const Vec<D>& H, const std::vector<Vec<D>>& unwrapped,
              const std::vector<Vec<D>>& velocities);
+
+    // The same for an engine that gives the pressure tensor at the sample (times the
+    // volume) instead of its integral: G is its running sum times the interval (the
+    // Einstein form of Green-Kubo's integral), kept here.
+    void add_flux(const SymTensor& volume_times_pressure, const std::vector<Vec<D>>& unwrapped,
+                  const std::vector<Vec<D>>& velocities);
 
     // summary.json's "transport".
     nlohmann::json summary(const Scales& s) const;
@@ -84,6 +92,7 @@ template <int D> class TransportMeasurement {
     std::unique_ptr<EinsteinEstimator> shear_, bulk_, heat_, diffusion_;
     std::unique_ptr<AutoCorrelator> vacf_;
     std::vector<double> scratch_;
+    SymTensor flux_integral_{}; // add_flux's running G
 };
 
 // The run's closing lines for summary.json's "transport": each coefficient with its error

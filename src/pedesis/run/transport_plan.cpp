@@ -60,7 +60,7 @@ TransportMeasurement<D> start_transport(const RunConfig& c, const ParticleStore<
     if (c.soft()) {
         interval = t.interval.value_or(10.0 * step);
         interval = in_steps(interval, step);
-        diffusion = t.diffusion_interval.value_or(10.0 * interval);
+        diffusion = t.diffusion_interval.value_or(5.0 * interval);
     } else {
         if (!t.interval || !t.diffusion_interval) {
             if (!(free > 0.0 && std::isfinite(free)))
@@ -121,6 +121,9 @@ typename TransportMeasurement<D>::Scales transport_scales(const RunConfig& c, co
         s.enskog = theory::enskog_transport(D, static_cast<double>(p.size()) / s.volume,
                                             2.0 * sp.radius, sp.mass, temperature);
     }
+    if (c.dynamics == "langevin")
+        s.bulk_missing = "the Langevin thermostat's temperature fluctuations swamp the pressure's "
+                         "(measure the bulk viscosity with nve dynamics)";
     if (c.soft())
         s.heat_missing = "the soft engine does not measure the heat flux (per-particle energies "
                          "and pair virials) yet";
