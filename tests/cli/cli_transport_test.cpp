@@ -165,10 +165,10 @@ TEST_F(CliTransport, SoftEngineMeasuresWhatItCanAndSaysWhyNotTheRest) {
         EXPECT_FALSE(t.at(k).at("why").get<std::string>().empty()) << k;
     }
     EXPECT_FALSE(t.contains("enskog")) << "Enskog is for hard particles";
-    // its samples fall on whole steps: 10 steps of 0.004 by default
-    EXPECT_NEAR(t.at("interval").get<double>(), 0.04, 1e-12);
+    // its samples fall on whole steps: 20 steps of 0.004 by default
+    EXPECT_NEAR(t.at("interval").get<double>(), 0.08, 1e-12);
     // nve measures the bulk viscosity too
-    write("nve.toml", wca("nve", 8000));
+    write("nve.toml", wca("nve", 10000));
     ASSERT_EQ(run_pedesis("run nve.toml --out nve", dir).exit_code, 0);
     EXPECT_FALSE(transport("nve").at("bulk_viscosity").at("value").is_null());
     // brownian and sheared runs are refused with the way out
@@ -179,8 +179,8 @@ TEST_F(CliTransport, SoftEngineMeasuresWhatItCanAndSaysWhyNotTheRest) {
 }
 
 TEST_F(CliTransport, SoftRestartContinuesTheMeasurementBitForBit) {
-    write("whole.toml", wca("langevin", 4000, "block_time = 4.0\n"));
-    write("half.toml", wca("langevin", 2000, "block_time = 4.0\n"));
+    write("whole.toml", wca("langevin", 5000, "block_time = 5.0\n"));
+    write("half.toml", wca("langevin", 2500, "block_time = 5.0\n"));
     ASSERT_EQ(run_pedesis("run whole.toml --out whole", dir).exit_code, 0);
     ASSERT_EQ(run_pedesis("run half.toml --out half", dir).exit_code, 0);
     const CliResult r = run_pedesis("run whole.toml --restart half/checkpoint.bin --out rest", dir);

@@ -58,9 +58,9 @@ TransportMeasurement<D> start_transport(const RunConfig& c, const ParticleStore<
     double interval = 0.0, diffusion = 0.0;
     const double free = mean_free_time(p, box, contact);
     if (c.soft()) {
-        interval = t.interval.value_or(10.0 * step);
+        interval = t.interval.value_or(20.0 * step);
         interval = in_steps(interval, step);
-        diffusion = t.diffusion_interval.value_or(5.0 * interval);
+        diffusion = t.diffusion_interval.value_or(3.0 * interval);
     } else {
         if (!t.interval || !t.diffusion_interval) {
             if (!(free > 0.0 && std::isfinite(free)))

@@ -13,10 +13,10 @@ namespace pedesis {
 struct TransportConfig {
     bool on = false; // the table is there
     // Time between samples of the moments (unset: a fifth of the Enskog mean free time for
-    // hard particles, ten steps for soft ones); rounded to whole steps where there are steps.
+    // hard particles, twenty steps for soft ones); rounded to whole steps where there are steps.
     std::optional<double> interval;
     // Time between samples of the particles' positions for D (unset: hard particles two
-    // mean free times, soft ones five moment intervals); a whole number of intervals.
+    // mean free times, soft ones three moment intervals); a whole number of intervals.
     std::optional<double> diffusion_interval;
     std::int64_t blocks = 8; // independent blocks for the errors
     // Length of a block (unset: the run's length over `blocks`, when [run] fixes it).
