@@ -129,6 +129,9 @@ TEST_F(CliTransport, RefusesWhatItCannotMeasure) {
     expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "interval = -1\n"),
                     {"transport.interval", "positive time"});
     expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "lag = 3\n"), {"transport.lag"});
+    // a run of 10^11 samples would never end
+    expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "interval = 1e-9\n"),
+                    {"more than 10^8 samples"});
     // 8 blocks of 1.25 time units hold fewer than 20 samples of the particles
     expect_rejected(hard_gas("event", 2, 30.0, 100, 10.0), {"fewer than 20 samples"});
     // no [run] time: the blocks need a length

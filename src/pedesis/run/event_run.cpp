@@ -3,6 +3,7 @@
 #include "pedesis/run/engine_params.hpp"
 
 #include "pedesis/core/error.hpp"
+#include "pedesis/core/interrupt.hpp"
 #include "pedesis/core/simd_level.hpp"
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/io/atomic_file.hpp"
@@ -92,6 +93,9 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
             reason = engine_->run(limits_);
             if (reason != StopReason::time || !sampling) break;
             this->sample_transport(*engine_);
+            // (samples closer than events return at once from run(), which then never
+            // looks for a signal)
+            if (interrupt_requested()) return {};
             if (engine_->time() >= until) break;
         }
         if (reason == StopReason::interrupted) return {}; // the Simulation sees the signal

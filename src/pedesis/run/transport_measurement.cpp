@@ -57,6 +57,12 @@ template <int D>
 TransportMeasurement<D>::TransportMeasurement(const Plan& plan, const std::string& where)
     : plan_(plan) {
     const double diffusion_interval = plan.interval * static_cast<double>(plan.diffusion_every);
+    // a run's samples are its length over the interval: bounded, so that a tiny interval
+    // is an error now rather than a run that never ends
+    if (!(plan.interval > 0.0) || plan.block_time / plan.interval > 1e8)
+        throw InputError(fmt::format("{}: interval {:g} gives more than 10^8 samples a block "
+                                     "of {:g}: raise interval",
+                                     where, plan.interval, plan.block_time));
     const double needed = static_cast<double>(min_block_samples) *
                           (plan.particles ? diffusion_interval : plan.interval);
     if (!(plan.block_time >= needed * (1.0 - 1e-9)))
