@@ -129,6 +129,9 @@ TEST_F(CliTransport, RefusesWhatItCannotMeasure) {
     expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "interval = -1\n"),
                     {"transport.interval", "positive time"});
     expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "lag = 3\n"), {"transport.lag"});
+    // positions 10^300 apart: not a conversion out of range, the block's refusal
+    expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "diffusion_interval = 1e300\n"),
+                    {"fewer than 20 samples"});
     // a run of 10^11 samples would never end
     expect_rejected(hard_gas("event", 2, 30.0, 100, 100.0, "interval = 1e-9\n"),
                     {"more than 10^8 samples"});

@@ -73,8 +73,9 @@ TransportMeasurement<D> start_transport(const RunConfig& c, const ParticleStore<
     typename TransportMeasurement<D>::Plan plan;
     plan.start = start;
     plan.interval = interval;
+    // (capped before the conversion: a block must hold 20 of them, which refuses the rest)
     plan.diffusion_every =
-        static_cast<std::uint64_t>(std::max(1.0, std::round(diffusion / interval)));
+        static_cast<std::uint64_t>(std::clamp(std::round(diffusion / interval), 1.0, 1e12));
     if (t.block_time) {
         plan.block_time = *t.block_time;
     } else {
