@@ -31,6 +31,23 @@ template <int D> struct FluxMoments {
         heat_integral += heat * dt;
         t = now;
     }
+    // Under Lees-Edwards shear at `rate` (the event engine), `kinetic` sums peculiar
+    // velocities c = v - rate y e_x, and in free flight dc_x/dt = -rate c_y: so
+    // d/dt Σ m c_x c_y = -rate Σ m c_y², d/dt Σ m c_x c_z = -rate Σ m c_y c_z,
+    // d/dt Σ m c_x² = -2 rate Σ m c_x c_y, the rest constant. The integrals are exact
+    // polynomials in dt. (The heat sums are not kept under shear.)
+    void advance_sheared(double now, double rate) {
+        const double dt = now - t, g = rate;
+        const double xx = kinetic[0], yy = kinetic[1], xy = kinetic[3], yz = kinetic[5];
+        for (int c = 0; c < 6; ++c) kinetic_integral[c] += kinetic[c] * dt;
+        kinetic_integral[0] += -g * xy * dt * dt + g * g * yy * dt * dt * dt / 3.0;
+        kinetic_integral[3] += -0.5 * g * yy * dt * dt;
+        kinetic_integral[4] += -0.5 * g * yz * dt * dt;
+        kinetic[0] = xx - 2.0 * g * xy * dt + g * g * yy * dt * dt;
+        kinetic[3] = xy - g * yy * dt;
+        kinetic[4] -= g * yz * dt;
+        t = now;
+    }
     // A particle of mass m with velocity v enters (sign +1) or leaves (−1) the sums.
     void count(double m, const Vec<D>& v, double sign) {
         add_sym_outer<D>(kinetic, v, v, sign * m);

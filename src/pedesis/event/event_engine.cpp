@@ -34,6 +34,22 @@ void validate(const EventParams& p) {
         throw InputError("event.growth_packing_fraction must lie in (0, 1)");
     if (!(p.growth_max_pressure > 1.0))
         throw InputError("event.growth_max_pressure must exceed 1 (the ideal gas)");
+    if (!(p.thermostat_temperature >= 0.0 && p.thermostat_temperature <= 1e100))
+        throw InputError("event.temperature must be a finite number >= 0");
+    if (p.thermostat_temperature > 0.0 &&
+        !(p.thermostat_interval > 0.0 && std::isfinite(p.thermostat_interval)))
+        throw InputError("event.thermostat_interval must be a positive finite number");
+}
+
+// The time of a periodic pass `interval` after now: RunError when the interval is below
+// the clock's resolution (the pass would come again at the same instant, for ever).
+double next_pass_time(double now, double interval, const char* what) {
+    const double next = now + interval;
+    if (!(next > now))
+        throw RunError(fmt::format("event engine: at t = {:g} the {} interval {:g} is below the "
+                                   "clock's resolution; raise it",
+                                   now, what, interval));
+    return next;
 }
 
 // Growth steps come at least this often in collisions per particle, so that the
@@ -94,6 +110,18 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
         }
         image_.push_back(image_shift<D>(box_.wrap(p_.position[i])));
     }
+    if (box_.sheared()) {
+        if (params_.growth_rate > 0.0)
+            throw InputError(
+                "event.growth_rate: growth and Lees-Edwards shear cannot run together");
+        box_.shear_to_time(now_);
+        shear_velocity_ = box_.shear_rate() * box_.length(1);
+        pair_times_ = nullptr; // the batch kernel knows no sliding images
+        // the given velocities are peculiar: the flow starts linear
+        for (std::size_t i = 0; i < p_.size(); ++i)
+            if (inv_mass_[p_.species[i]] > 0.0)
+                p_.velocity[i][0] += box_.shear_rate() * p_.position[i][1];
+    }
     // Storage along a space-filling curve, so that a particle's neighbours lie in nearby
     // cache lines: events come in no spatial order, and at 10^6 particles a neighbour
     // stored far away costs a miss per array in every prediction. Only a fresh start is
@@ -113,6 +141,9 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
         if (inv_mass_[f_[i].species] > 0.0)
             kinetic_ += 0.5 * norm2(f_[i].v) / inv_mass_[f_[i].species];
     kinetic_exact_ = kinetic_;
+    if (params_.thermostat_temperature > 0.0 && params_.growth_rate > 0.0)
+        throw InputError("event.thermostat: growth holds the kinetic energy itself; use one or "
+                         "the other");
 
     radius_rate_.assign(radius_.size(), 0.0);
     if (params_.growth_rate > 0.0) start_growth();
@@ -128,6 +159,12 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     check_no_overlap(1e-10);
     build_all_lists();
     setup();
+    if (params_.thermostat_temperature > 0.0)
+        next_rescale_ = next_pass_time(now_, params_.thermostat_interval, "thermostat");
+    if (box_.sheared()) {
+        next_shear_relist_ = next_pass_time(now_, shell_ / shear_velocity_, "shear");
+        track_flux_moments(); // the exact kinetic stress of the log's P_xy
+    }
 }
 
 template <int D> double EventEngine<D>::min_periodic_length() const {
@@ -154,9 +191,11 @@ template <int D> bool EventEngine<D>::choose_skin() {
     const double contact = 2.0 * max_radius;
     const double room = 0.5 * min_periodic_length() - contact;
     if (!(room >= min_room_fraction * contact)) return false;
-    skin_ = std::min(skin_, (growth_.growing ? 0.4 : 0.45) * room);
+    // (growth and the shear's slide each take another third of the skin between passes)
+    const bool third = growth_.growing || box_.sheared();
+    skin_ = std::min(skin_, (third ? 0.4 : 0.45) * room);
     if (!(skin_ > 0.0)) throw InputError("event.skin must be positive");
-    shell_ = growth_.growing ? skin_ / 3.0 : 0.5 * skin_;
+    shell_ = third ? skin_ / 3.0 : 0.5 * skin_;
     return true;
 }
 
@@ -336,10 +375,45 @@ template <int D> void EventEngine<D>::make_grids() {
 template <int D>
 template <class F>
 void EventEngine<D>::for_each_candidate(std::uint32_t i, F&& f) const {
+    if (box_.sheared()) [[unlikely]] {
+        for_each_candidate_sheared(i, f);
+        return;
+    }
     const std::size_t classes = grids_.size();
     const std::size_t c = class_of_[f_[i].species];
     for (std::size_t k = 0; k < classes; ++k)
         grids_[k].for_each_reaching(ev_[i].centre, reach_[c * classes + k], f);
+}
+
+// A centre within reach of the top face meets the images above of particles near the
+// bottom, displaced by the offset along x: their cells lie around the centre's image
+// below, c - L_y e_y - offset e_x (and the reverse at the bottom face). The three scans
+// may overlap (a short box, the plain scan's wrap across y), so the candidates are
+// gathered, sorted and given once each.
+template <int D>
+template <class F>
+void EventEngine<D>::for_each_candidate_sheared(std::uint32_t i, F&& f) const {
+    const std::size_t classes = grids_.size();
+    const std::size_t c = class_of_[f_[i].species];
+    const Vec<D>& centre = ev_[i].centre;
+    Vec<D> image_shift{};
+    image_shift[0] = box_.shear_offset();
+    image_shift[1] = box_.length(1);
+    const double margin = 1e-9 * box_.length(1);
+    sheared_candidates_.clear();
+    const auto keep = [&](std::uint32_t j) { sheared_candidates_.push_back(j); };
+    for (std::size_t k = 0; k < classes; ++k) {
+        const double reach = reach_[c * classes + k];
+        grids_[k].for_each_reaching(centre, reach, keep);
+        if (centre[1] + reach + margin >= box_.hi(1))
+            grids_[k].for_each_reaching(centre - image_shift, reach, keep);
+        if (centre[1] - reach - margin <= box_.lo(1))
+            grids_[k].for_each_reaching(centre + image_shift, reach, keep);
+    }
+    std::sort(sheared_candidates_.begin(), sheared_candidates_.end());
+    sheared_candidates_.erase(std::unique(sheared_candidates_.begin(), sheared_candidates_.end()),
+                              sheared_candidates_.end());
+    for (std::uint32_t j : sheared_candidates_) f(j);
 }
 
 template <int D> std::size_t EventEngine<D>::grids_memory() const {
@@ -469,8 +543,8 @@ template <int D> template <bool Growing> double EventEngine<D>::predict_with(std
             const std::uint32_t j = list[k];
             const std::size_t sj = f_[j].species;
             const Vec<D> xj = f_[j].x + f_[j].v * (now_ - f_[j].t);
-            const Vec<D> dr = box_.minimum_image(xi - xj);
-            const Vec<D> dv = vi - f_[j].v;
+            Vec<D> dv = vi - f_[j].v;
+            const Vec<D> dr = pair_separation(xi - xj, dv[0]);
             double tc;
             if constexpr (Growing)
                 tc = growing_pair_collision_time(dr, dv, ri + radius_now(sj),
@@ -534,7 +608,10 @@ template <int D> void EventEngine<D>::set_wall_restitution(double xi) {
 template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_t j) {
     advance(i);
     advance(j);
-    const Vec<D> dr = box_.minimum_image(f_[i].x - f_[j].x);
+    // under shear, j collides as the image nearest i, whose x velocity differs by -slide
+    double slide = 0.0;
+    const Vec<D> dr = pair_separation(f_[i].x - f_[j].x, slide);
+    f_[j].v[0] -= slide;
     const double dist = norm(dr);
     const Vec<D> n = dr * (1.0 / dist);
     double xi = params_.restitution;
@@ -549,10 +626,24 @@ template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_
         growth_.growing ? collide_growing_pair(f_[i].v, f_[j].v, n, inv_mass_[si], inv_mass_[sj],
                                                xi, radius_rate_[si] + radius_rate_[sj])
                         : collide_pair(f_[i].v, f_[j].v, n, inv_mass_[si], inv_mass_[sj], xi);
+    f_[j].v[0] += slide;
     add_collision_virial(counters_, res.impulse, n, dr);
     if (moments_on_) [[unlikely]] {
-        moments_.advance(now_);
-        moments_.collision(mass_of(si), vi0, f_[i].v, mass_of(sj), vj0, f_[j].v, dr);
+        if (box_.sheared()) {
+            // peculiar velocities (a change of velocity is the same in both frames; j's
+            // image has j's peculiar velocity)
+            moments_.advance_sheared(now_, box_.shear_rate());
+            Vec<D> flow_i{}, flow_j{};
+            flow_i[0] = flow_velocity(i);
+            flow_j[0] = flow_velocity(j);
+            Vec<D> vj0_own = vj0; // (the image's velocity: j's own less the slide)
+            vj0_own[0] += slide;
+            moments_.collision(mass_of(si), vi0 - flow_i, f_[i].v - flow_i, mass_of(sj),
+                               vj0_own - flow_j, f_[j].v - flow_j, dr);
+        } else {
+            moments_.advance(now_);
+            moments_.collision(mass_of(si), vi0, f_[i].v, mass_of(sj), vj0, f_[j].v, dr);
+        }
     }
     kinetic_ += res.energy_change;
     if (kinetic_ < 0.5 * kinetic_exact_) resum_kinetic_energy();
@@ -592,17 +683,119 @@ template <int D> void EventEngine<D>::process_wall(std::uint32_t i, std::int32_t
     ++f_[i].count;
 }
 
+template <int D> double EventEngine<D>::peculiar_kinetic_energy() const {
+    double k = 0.0;
+    for (std::uint32_t i = 0; i < size(); ++i) {
+        const double inv_m = inv_mass_[f_[i].species];
+        if (inv_m == 0.0) continue;
+        Vec<D> c = f_[i].v;
+        c[0] -= flow_velocity(i);
+        k += 0.5 * norm2(c) / inv_m;
+    }
+    return k;
+}
+
+// Every particle at now_; the thermostat's rescaling if due; every list rebuilt if the
+// offset has used up its third of the skin (else only the events predicted anew, which
+// a rescaling makes stale).
+template <int D> void EventEngine<D>::periodic_pass() {
+    for (std::uint32_t i = 0; i < size(); ++i) advance(i);
+    if (now_ >= next_rescale_) {
+        rescale_temperature();
+        next_rescale_ = next_pass_time(now_, params_.thermostat_interval, "thermostat");
+    }
+    if (now_ >= next_shear_relist_) {
+        for (std::uint32_t i = 0; i < size(); ++i) wrap_flight(i);
+        relist();
+        next_shear_relist_ = next_pass_time(now_, shell_ / shear_velocity_, "shear");
+        return;
+    }
+    queue_.build_from(size(), [&](std::uint32_t i) { return predict(i); });
+}
+
+// Scales the velocities relative to the flow and to the centre of mass (along the axes
+// whose momentum the dynamics keeps, as observe/thermo.hpp counts the degrees of
+// freedom) so that their temperature is the thermostat's. Needs every flight at now_.
+template <int D> void EventEngine<D>::rescale_temperature() {
+    bool obstacle = false;
+    Vec<D> momentum{};
+    double mass = 0.0;
+    std::size_t mobile = 0;
+    for (std::uint32_t i = 0; i < size(); ++i) {
+        const double inv_m = inv_mass_[f_[i].species];
+        if (inv_m == 0.0) {
+            obstacle = true;
+            continue;
+        }
+        Vec<D> c = f_[i].v;
+        c[0] -= flow_velocity(i);
+        momentum += c * (1.0 / inv_m);
+        mass += 1.0 / inv_m;
+        ++mobile;
+    }
+    int conserved = 0;
+    Vec<D> mean{};
+    for (int a = 0; a < D; ++a)
+        if (!obstacle && box_.periodic(a) && mass > 0.0) {
+            ++conserved;
+            mean[a] = momentum[a] / mass;
+        }
+    double thermal = 0.0;
+    for (std::uint32_t i = 0; i < size(); ++i) {
+        const double inv_m = inv_mass_[f_[i].species];
+        if (inv_m == 0.0) continue;
+        Vec<D> c = f_[i].v;
+        c[0] -= flow_velocity(i);
+        thermal += 0.5 * norm2(c - mean) / inv_m;
+    }
+    const double freedom = D * static_cast<double>(mobile) - conserved;
+    if (!(thermal > 0.0) || !(freedom > 0.0)) return; // nothing moves: nothing to scale
+    const double scale = std::sqrt(params_.thermostat_temperature * freedom / (2.0 * thermal));
+    for (std::uint32_t i = 0; i < size(); ++i) {
+        if (inv_mass_[f_[i].species] == 0.0) continue;
+        const double flow = flow_velocity(i);
+        Vec<D> c = f_[i].v;
+        c[0] -= flow;
+        f_[i].v = mean + (c - mean) * scale;
+        f_[i].v[0] += flow;
+    }
+    thermostat_.energy_removed += thermal * (1.0 - scale * scale);
+    ++thermostat_.rescales;
+    resum_kinetic_energy();
+    if (moments_on_) {
+        if (box_.sheared())
+            moments_.advance_sheared(now_, box_.shear_rate());
+        else
+            moments_.advance(now_);
+        recount_kinetic_moments();
+    }
+}
+
 template <int D> void EventEngine<D>::track_flux_moments() {
     if (moments_on_) return;
     moments_ = FluxMoments<D>{};
     moments_.t = now_;
-    for (std::size_t i = 0; i < size(); ++i) moments_.count(mass_of(f_[i].species), f_[i].v, 1.0);
+    recount_kinetic_moments();
     moments_on_ = true;
+}
+
+// Σ m v v afresh (peculiar velocities under shear), with every flight at now_ or not.
+template <int D> void EventEngine<D>::recount_kinetic_moments() {
+    moments_.kinetic = SymTensor{};
+    moments_.heat = Vec<D>{};
+    for (std::uint32_t i = 0; i < size(); ++i) {
+        Vec<D> v = f_[i].v;
+        if (box_.sheared() && inv_mass_[f_[i].species] > 0.0) v[0] -= flow_velocity(i);
+        moments_.count(mass_of(f_[i].species), v, 1.0);
+    }
 }
 
 template <int D> FluxMoments<D> EventEngine<D>::flux_moments() const {
     FluxMoments<D> m = moments_;
-    m.advance(now_);
+    if (box_.sheared())
+        m.advance_sheared(now_, box_.shear_rate());
+    else
+        m.advance(now_);
     return m;
 }
 
@@ -621,6 +814,14 @@ template <int D> void EventEngine<D>::resum_kinetic_energy() {
 // (the rebuilt row and a joining partner's row end as a full rebuild would leave them;
 // a staying partner's row keeps its order, which matters only for exactly tied events).
 template <int D> void EventEngine<D>::wrap_flight(std::uint32_t i) {
+    if (box_.sheared()) [[unlikely]] {
+        // (at f_[i].t = now_, whose offset the box holds) the image k boxes above moves
+        // k rate L_y faster: the same motion, told in the box's frame
+        const Vec<D> shift = box_.wrap(f_[i].x);
+        for (int a = 0; a < D; ++a) image_[i][a] += static_cast<std::int32_t>(shift[a]);
+        f_[i].v[0] -= shift[1] * shear_velocity_;
+        return;
+    }
     wrap_counting<D>(box_, f_[i].x, image_[i]);
 }
 
@@ -691,14 +892,20 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
         const std::uint32_t i = queue_.top();
         const double te = queue_.top_time();
         if (next_growth_step_ < te && next_growth_step_ <= limits.time) {
-            now_ = next_growth_step_;
+            set_now(next_growth_step_);
             growth_step(true);
             if (!growth_.growing) return StopReason::grown;
             continue;
         }
+        if (const double pass = std::min(next_shear_relist_, next_rescale_);
+            pass < te && pass <= limits.time) [[unlikely]] {
+            set_now(pass);
+            periodic_pass();
+            continue;
+        }
         if (te == never) return StopReason::no_events; // nothing moves: time is meaningless
         if (te > limits.time) {
-            if (std::isfinite(limits.time)) now_ = std::max(now_, limits.time);
+            if (std::isfinite(limits.time)) set_now(std::max(now_, limits.time));
             return StopReason::time;
         }
         // Inelastic collapse shows as unbounded events at one instant.
@@ -718,7 +925,7 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
         } else {
             stalled_events_ = 0;
         }
-        now_ = te;
+        set_now(te);
         const std::int32_t partner = ev_[i].partner;
         prefetch_list(i);
         if (partner >= 0) {
@@ -790,6 +997,7 @@ template <int D> const ParticleStore<D>& EventEngine<D>::lazy_particles() const 
     for (std::size_t i = 0; i < size(); ++i) {
         p_.position[i] = f_[i].x;
         p_.velocity[i] = f_[i].v;
+        if (box_.sheared() && inv_mass_[f_[i].species] > 0.0) p_.velocity[i][0] -= flow_velocity(i);
     }
     return p_;
 }
@@ -811,6 +1019,7 @@ ParticleStore<D> EventEngine<D>::snapshot(std::vector<std::array<std::int32_t, D
     for (std::size_t i = 0; i < size(); ++i) {
         s.position[i] = position_now(i);
         s.velocity[i] = f_[i].v;
+        if (box_.sheared() && inv_mass_[f_[i].species] > 0.0) s.velocity[i][0] -= flow_velocity(i);
     }
     if (images) {
         images->resize(size());
@@ -827,7 +1036,8 @@ void EventEngine<D>::check_particle_overlap(std::uint32_t i, double rel_tol) con
     for (std::uint16_t k = 0; k < f_[i].n_nbr; ++k) {
         const std::uint32_t j = list[k];
         const Vec<D> xj = f_[j].x + f_[j].v * (now_ - f_[j].t);
-        const double d = norm(box_.minimum_image(xi - xj));
+        double unused = 0.0;
+        const double d = norm(pair_separation(xi - xj, unused));
         const double s = contact_now(i, j);
         if (d < s * (1.0 - rel_tol)) {
             std::ostringstream m;
@@ -890,8 +1100,8 @@ namespace {
 constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" in memory order
 // 2: one cell list per size class; 3: growth state; 4: the collision virial's
 // off-diagonal components; 5: image counts and the flux moments (version 4 is read with
-// none crossed and no moments)
-constexpr std::uint32_t checkpoint_version = 5;
+// none crossed and no moments); 6: Lees-Edwards shear and the rescaling thermostat
+constexpr std::uint32_t checkpoint_version = 6;
 constexpr std::uint32_t oldest_checkpoint_version = 4;
 } // namespace
 
@@ -960,6 +1170,11 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, image_);
     put<std::uint8_t>(out, moments_on_);
     put(out, moments_);
+    put(out, box_.shear_rate());
+    put(out, next_shear_relist_);
+    put(out, next_rescale_);
+    put(out, thermostat_.rescales);
+    put(out, thermostat_.energy_removed);
 }
 
 template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const EventParams& params) {
@@ -1067,6 +1282,33 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
     } else {
         e.image_.assign(n, {});
     }
+    if (version >= 6) {
+        double rate = 0.0;
+        get(in, rate);
+        get(in, e.next_shear_relist_);
+        get(in, e.next_rescale_);
+        get(in, e.thermostat_.rescales);
+        get(in, e.thermostat_.energy_removed);
+        // passes before now_ would repeat at one instant (NaN never comes)
+        if (!(e.next_shear_relist_ >= e.now_) || !(e.next_rescale_ >= e.now_))
+            throw InputError("checkpoint: corrupt pass times");
+        if (!(std::isfinite(rate) && rate >= 0.0) ||
+            (rate > 0.0) == (e.next_shear_relist_ == never))
+            throw InputError("checkpoint: corrupt shear rate");
+        if (rate > 0.0) {
+            if (e.growth_.growing) throw InputError("checkpoint: corrupt shear rate");
+            e.box_.set_shear_rate(rate); // (refuses walls across x or y)
+            e.box_.shear_to_time(e.now_);
+            e.shear_velocity_ = rate * e.box_.length(1);
+            e.pair_times_ = nullptr;
+            e.shell_ = e.skin_ / 3.0;
+        }
+    }
+    // the config's thermostat from now on (the checkpoint's schedule if it had one)
+    if (!(params.thermostat_temperature > 0.0))
+        e.next_rescale_ = never;
+    else if (e.next_rescale_ == never)
+        e.next_rescale_ = next_pass_time(e.now_, params.thermostat_interval, "thermostat");
     e.ev_.resize(n);
     for (std::size_t i = 0; i < n; ++i) e.ev_[i] = {centres[i], partners[i], counts[i]};
     e.queue_.build(times);

@@ -10,6 +10,12 @@
 //   skin/2 from its centre, which keeps the lists exact without global rebuilds;
 // - a collision counter per particle invalidates events whose partner has collided
 //   since the prediction (no event is ever removed from the calendar);
+// - optional Lees-Edwards shear (the box's shear rate, core/box.hpp): velocities are kept
+//   in the laboratory frame, so flights stay straight; a particle wrapped across the y
+//   faces by k boxes loses k rate L_y of its x velocity, and a pair's nearest image k
+//   boxes above moves k rate L_y faster (pair_separation). The slide moves the images
+//   across the y faces against each other, so the lists' shell is skin/3 and every list
+//   is rebuilt each time the offset has moved another skin/3 (next_shear_relist_);
 // - optional Lubachevsky-Stillinger growth: every radius grows linearly in time (ratios
 //   kept), with the exact collision time and rule for growing spheres; the lists, the
 //   radii and a velocity rescaling (which holds the kinetic energy) are renewed at
@@ -27,6 +33,7 @@
 #include "pedesis/spatial/cell_list.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <iosfwd>
 #include <limits>
@@ -48,6 +55,18 @@ struct EventParams {
     double growth_rate = 0.0;
     double growth_packing_fraction = 0.0;
     double growth_max_pressure = 1e3;
+    // Velocity rescaling ([event] thermostat = "rescale"): every thermostat_interval the
+    // velocities relative to the flow (peculiar velocities under shear) are scaled so that
+    // the temperature (the log's: the centre of mass's motion left out) is
+    // thermostat_temperature. 0: no thermostat.
+    double thermostat_temperature = 0.0;
+    double thermostat_interval = 0.0;
+};
+
+// What the rescaling thermostat has done, for logs and summaries.
+struct ThermostatStatus {
+    std::uint64_t rescales = 0;
+    double energy_removed = 0.0; // sum of the kinetic energy each rescaling took away
 };
 
 enum class GrowthEnd : std::uint8_t { none, packing_fraction, pressure };
@@ -89,13 +108,16 @@ template <int D> class EventEngine {
     void track_flux_moments();
     bool tracks_flux_moments() const { return moments_on_; }
     // Those integrals carried to the current time (G's collisional part is counters().virial).
+    // Under shear they are always kept, of the peculiar velocities, without the heat sums.
     FluxMoments<D> flux_moments() const;
-    double kinetic_energy() const { return kinetic_; }
+    // Under shear, of the peculiar velocities (v - rate y e_x): the heat, not the flow.
+    double kinetic_energy() const { return box_.sheared() ? peculiar_kinetic_energy() : kinetic_; }
     std::size_t size() const { return f_.size(); }
     double skin() const { return skin_; }
     // Volume fraction of the particles at the current time (radii grow with growth).
     double packing_fraction() const;
     const GrowthStatus& growth() const { return growth_; }
+    const ThermostatStatus& thermostat() const { return thermostat_; }
 
     // Position of particle i (storage index) at the current time, wrapped into the box.
     Vec<D> position_now(std::size_t i) const;
@@ -107,14 +129,15 @@ template <int D> class EventEngine {
     Vec<D> unwrapped_now(std::size_t i) const {
         return unwrapped<D>(box_, f_[i].x + f_[i].v * (now_ - f_[i].t), image_[i]);
     }
-    // Particle i's current velocity.
+    // Particle i's current velocity (in the laboratory frame).
     const Vec<D>& velocity(std::size_t i) const { return f_[i].v; }
     // All particles at the current time, wrapped, in storage order; with `images`, their
-    // image counts too.
+    // image counts too. Under shear the velocities are the peculiar ones (the soft
+    // engine's frames give the same).
     ParticleStore<D> snapshot(std::vector<std::array<std::int32_t, D>>* images = nullptr) const;
-    // Particle data whose velocities, tags and species are current (positions are not:
-    // each is at the particle's own time): copies the engine fills at each call and keeps
-    // (48 bytes per particle in 3D).
+    // Particle data whose velocities (peculiar under shear), tags and species are current
+    // (positions are not: each is at the particle's own time): copies the engine fills at
+    // each call and keeps (48 bytes per particle in 3D).
     const ParticleStore<D>& lazy_particles() const;
 
     // Throws RunError naming the pair if any two particles overlap by more than a
@@ -139,6 +162,35 @@ template <int D> class EventEngine {
     static constexpr std::int32_t wall_event_base = -3; // -3 - (2 axis + side)
 
     void setup();
+    // now_ moves to t; under shear the box's offset follows it.
+    void set_now(double t) {
+        now_ = t;
+        if (box_.sheared()) [[unlikely]]
+            box_.shear_to_time(t);
+    }
+    // The separation r_i - r_j of the nearest image of j at now_, from d = r_i - r_j of
+    // the flights (which may lie up to a shell outside the box); under shear, adds to
+    // `dvx` the change of the relative velocity's x component for that image.
+    Vec<D> pair_separation(Vec<D> d, double& dvx) const {
+        if (!box_.sheared()) return box_.minimum_image(d);
+        const double k = std::round(d[1] / box_.length(1));
+        d[1] -= k * box_.length(1);
+        d[0] -= k * box_.shear_offset();
+        d[0] -= box_.length(0) * std::round(d[0] / box_.length(0));
+        dvx -= k * shear_velocity_;
+        return box_.minimum_image(d); // the other axes
+    }
+    double peculiar_kinetic_energy() const;
+    void recount_kinetic_moments();
+    // x velocity of the flow at particle i's position now (0 without shear)
+    double flow_velocity(std::uint32_t i) const {
+        return box_.shear_rate() * (f_[i].x[1] + f_[i].v[1] * (now_ - f_[i].t));
+    }
+    // The whole-system passes of shear and the thermostat, at now_: a rescaling of the
+    // velocities and/or a rebuild of every list, then every event predicted anew.
+    void periodic_pass();
+    void rescale_temperature();
+    void schedule_passes();
     double default_skin(double mean_diameter) const;
     void build_all_lists();
     void add_neighbor(std::uint32_t i, std::uint32_t j);
@@ -215,6 +267,12 @@ template <int D> class EventEngine {
     double window_virial_ = 0.0;
     GrowthStatus growth_;
 
+    // shear and the thermostat (never_time without them)
+    double shear_velocity_ = 0.0; // rate L_y: how much faster the image above moves
+    double next_shear_relist_ = never_time;
+    double next_rescale_ = never_time;
+    ThermostatStatus thermostat_;
+
     // Each particle's neighbour-list centre and pending event (its time is the calendar's,
     // queue_.time; the partner's collision count when it was predicted tells a stale
     // event). One record: the run loop reads the partner, and the prediction that follows
@@ -253,6 +311,9 @@ template <int D> class EventEngine {
     std::vector<double> reach_;          // [class of i][class of grid]: the list reach
     void make_grids();
     template <class F> void for_each_candidate(std::uint32_t i, F&& f) const;
+    // Under shear: also the cells around the images of i's centre across the y faces.
+    template <class F> void for_each_candidate_sheared(std::uint32_t i, F&& f) const;
+    mutable std::vector<std::uint32_t> sheared_candidates_;
     std::size_t grids_memory() const;
     EventQueue queue_;
     EventCounters<D> counters_;

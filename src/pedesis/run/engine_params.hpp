@@ -17,6 +17,8 @@ inline EventParams event_params(const RunConfig& c) {
     p.growth_rate = c.growth_rate;
     p.growth_packing_fraction = c.growth_packing_fraction;
     p.growth_max_pressure = c.growth_max_pressure;
+    p.thermostat_temperature = c.thermostat_temperature;
+    p.thermostat_interval = c.thermostat_interval;
     return p;
 }
 

@@ -12,6 +12,7 @@
 #include "pedesis/run/hard_checkpoint.hpp"
 #include "pedesis/run/hard_run_engine.hpp"
 #include "pedesis/run/hard_run_output.hpp"
+#include "pedesis/run/shear_output.hpp"
 #include "pedesis/setup/build_system.hpp"
 
 #include <fmt/format.h>
@@ -45,9 +46,15 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
   public:
     EventRunEngine(const RunConfig& c, const RunOptions& o, std::ostream& console)
         : HardRunEngine<D>(c, o, console) {
-        const Box<D> box = build_box<D>(c_);
+        Box<D> box = build_box<D>(c_);
+        if (c_.shear_rate > 0.0) box.set_shear_rate(c_.shear_rate);
         if (o_.restart) {
             engine_ = load_checkpoint<D>(*o_.restart, c_, record_);
+            if (engine_->box().shear_rate() != c_.shear_rate)
+                throw InputError(
+                    fmt::format("{}: [box] shear_rate = {:g} does not match the checkpoint's {:g}",
+                                c_.shear_where.empty() ? c_.file : c_.shear_where, c_.shear_rate,
+                                engine_->box().shear_rate()));
         } else {
             engine_ = this->with_source([&] {
                 return std::make_unique<EventEngine<D>>(build_particles<D>(c_, box), box,
@@ -125,8 +132,14 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
 
     void measure(std::vector<double>& values) override {
         const auto& e = *engine_;
+        // the velocity profile at each row after t = 0 (P_xy: out_.measure)
+        if (e.box().sheared() && e.time() > record_.last_log_time)
+            record_.shear.add_profile(e.snapshot(), e.box());
+        SymTensor kinetic_integral{};
+        if (e.box().sheared()) kinetic_integral = e.flux_moments().kinetic_integral;
         const HardMeasurement m =
-            out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters(), msd(), values);
+            out_.measure(e.lazy_particles(), e.box(), e.time(), e.counters(), msd(), values,
+                         e.box().sheared() ? &kinetic_integral : nullptr);
         values.push_back(static_cast<double>(e.counters().list_rebuilds));
         if (growing_) values.insert(values.end(), {e.packing_fraction(), e.growth().last_pressure});
         progress(m.temperature, m.pressure, m.has_pressure);
@@ -139,6 +152,13 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
             packing_fraction(engine_->lazy_particles(), engine_->box()), o_.out_dir.string());
         // (every set gives the same trajectory; the speed differs)
         console_ << fmt::format("  CPU kernels: {}\n", simd_name(simd_level()));
+        if (engine_->box().sheared())
+            console_ << fmt::format("  Lees–Edwards shear at rate {:g}: flow along x, gradient "
+                                    "along y, frames' velocities peculiar\n",
+                                    engine_->box().shear_rate());
+        if (c_.thermostat_temperature > 0.0)
+            console_ << fmt::format("  thermostat: velocities rescaled to T = {:g} every {:g}\n",
+                                    c_.thermostat_temperature, c_.thermostat_interval);
         wall_start_ = std::chrono::steady_clock::now();
         collisions_start_ = engine_->counters().pair_collisions;
     }
@@ -149,6 +169,12 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         j["cpu_kernels"] = simd_name(simd_level());
         j["msd"] = msd();
         this->transport_summary(j, e.box(), e.lazy_particles());
+        if (e.box().sheared()) j["shear"] = record_.shear.summary(e.box().shear_rate());
+        if (c_.thermostat_temperature > 0.0)
+            j["thermostat"] = {{"temperature", c_.thermostat_temperature},
+                               {"interval", c_.thermostat_interval},
+                               {"rescales", e.thermostat().rescales},
+                               {"energy_removed", e.thermostat().energy_removed}};
         if (growing_) {
             const auto& g = e.growth();
             j["growth"] = {{"growing", g.growing},
@@ -172,6 +198,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
             j["stopped_by"].template get<std::string>(), e.time(), e.counters().pair_collisions,
             j["collisions_per_particle"].template get<double>());
         out_.print_summary(console_, j, e.box());
+        if (e.box().sheared()) write_shear_results(o_.out_dir, record_.shear, e.box(), j, console_);
         this->write_transport(j, e.box(), e.lazy_particles());
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }

@@ -32,7 +32,7 @@ template <int D> class HardRunEngine : public RunEngine<D> {
     std::uint64_t frames() const override { return record_.frames; }
     void frame_written() override { ++record_.frames; }
     std::vector<const char*> stale_results() const override {
-        return {"summary.json", "speed_histogram.csv", "transport.csv"};
+        return {"summary.json", "speed_histogram.csv", "transport.csv", "velocity_profile.csv"};
     }
 
   protected:
@@ -44,6 +44,9 @@ template <int D> class HardRunEngine : public RunEngine<D> {
             record_.transport.reset();
             return;
         }
+        if (e.box().sheared())
+            throw InputError(c_.transport.where + ": not under shear: summary.json's \"shear\" "
+                                                  "gives the viscosity of a sheared run");
         if (!record_.transport)
             record_.transport.emplace(start_transport<D>(c_, p, e.box(), e.time(), step));
         e.track_flux_moments();

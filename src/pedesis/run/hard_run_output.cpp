@@ -20,8 +20,8 @@ namespace pedesis {
 namespace {
 
 // What follows the speed histogram in a checkpoint's run record: 1, the MSD's origin and
-// the transport measurement.
-constexpr std::uint32_t record_extension = 1;
+// the transport measurement; 2, then the shear record (1 is read with none).
+constexpr std::uint32_t record_extension = 2;
 
 // Which definition the run-averaged pressure uses, for the printed summary.
 template <int D> const char* pressure_method(const Box<D>& box) {
@@ -47,6 +47,10 @@ template <int D> void HardRunRecord<D>::save(std::ostream& out) const {
     binary::put(out, start);
     binary::put<std::uint8_t>(out, transport.has_value());
     if (transport) transport->save(out);
+    binary::put(out, shear.velocity_sum);
+    binary::put(out, shear.count);
+    binary::put(out, shear.shear_stress);
+    binary::put(out, last_kinetic_integral);
 }
 
 template <int D> void HardRunRecord<D>::load(std::istream& in) {
@@ -66,7 +70,7 @@ template <int D> void HardRunRecord<D>::load(std::istream& in) {
 template <int D> void HardRunRecord<D>::load_extension(std::istream& in) {
     std::uint32_t extension = 0;
     binary::get(in, extension);
-    if (extension != record_extension)
+    if (extension != record_extension && extension != 1)
         throw InputError("checkpoint: unknown run record extension " + std::to_string(extension));
     binary::get(in, start);
     std::uint8_t measured = 0;
@@ -74,6 +78,15 @@ template <int D> void HardRunRecord<D>::load_extension(std::istream& in) {
     if (measured > 1) throw InputError("checkpoint: corrupt run record");
     transport.reset();
     if (measured) transport.emplace(TransportMeasurement<D>::load(in, "checkpoint"));
+    shear = ShearRecord{};
+    if (extension >= 2) {
+        binary::get(in, shear.velocity_sum);
+        binary::get(in, shear.count);
+        binary::get(in, shear.shear_stress);
+        binary::get(in, last_kinetic_integral);
+        if (shear.velocity_sum.size() != shear.count.size())
+            throw InputError("checkpoint: corrupt shear record");
+    }
 }
 
 template <int D>
@@ -113,14 +126,21 @@ template <int D> std::vector<std::string> HardRunOutput<D>::log_columns() const 
 template <int D>
 HardMeasurement HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D>& box, double t,
                                           const EventCounters<D>& counters, double msd,
-                                          std::vector<double>& values) {
+                                          std::vector<double>& values,
+                                          const SymTensor* kinetic_integral) {
     HardMeasurement m;
     m.kinetics = measure_kinetics(p, box, hard_particle_dynamics);
     const auto& k = m.kinetics;
     const double T = k.temperature();
     const double dt = t - record_.last_log_time;
     const double meanT = 0.5 * (T + record_.last_temperature);
-    const SymTensor mean_thermal = sym_midpoint(k.thermal_tensor, record_.last_thermal);
+    SymTensor mean_thermal = sym_midpoint(k.thermal_tensor, record_.last_thermal);
+    if (kinetic_integral) {
+        if (dt > 0)
+            for (int c = 0; c < 6; ++c)
+                mean_thermal[c] = ((*kinetic_integral)[c] - record_.last_kinetic_integral[c]) / dt;
+        record_.last_kinetic_integral = *kinetic_integral;
+    }
     for (int c = 0; c < 6; ++c) record_.integral_thermal_dt[c] += mean_thermal[c] * dt;
     const SymTensor tensor =
         interval_pressure_tensor(box, record_.last_counters, counters, dt, mean_thermal);
@@ -140,6 +160,7 @@ HardMeasurement HardRunOutput<D>::measure(const ParticleStore<D>& p, const Box<D
     values.insert(values.end(), {dt > 0 ? P : 0.0, P_ideal});
     for (int slot : sym_slots<D>()) values.push_back(tensor[slot]);
     values.insert(values.end(), {dt > 0 && P_ideal > 0 ? P / P_ideal : 0.0, mft, msd});
+    if (box.sheared() && dt > 0) record_.shear.shear_stress.push_back(tensor[sym_slot(0, 1)]);
     if (c_.histogram_start && t >= *c_.histogram_start) record_.histogram.add(p);
     record_.last_log_time = t;
     record_.last_temperature = T;

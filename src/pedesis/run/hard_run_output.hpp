@@ -6,6 +6,7 @@
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/collision_counters.hpp"
 #include "pedesis/core/particles.hpp"
+#include "pedesis/observe/shear_flow.hpp"
 #include "pedesis/observe/speed_histogram.hpp"
 #include "pedesis/observe/thermo.hpp"
 #include "pedesis/run/run_options.hpp"
@@ -42,6 +43,10 @@ template <int D> struct HardRunRecord {
     std::vector<Vec<D>> start;
     // [transport]'s measurement so far (none without the table)
     std::optional<TransportMeasurement<D>> transport;
+    // under Lees-Edwards shear: the velocity profile and P_xy of every row after t = 0, and
+    // the engine's exact ∫ Σ m c c dt at the last row
+    ShearRecord shear;
+    SymTensor last_kinetic_integral{};
 
     // the kinetic state at t = 0 of a fresh run
     void start_from(const SpeciesKinetics& k) {
@@ -57,7 +62,7 @@ template <int D> struct HardRunRecord {
     }
     void save(std::ostream& out) const;
     // The fields up to the histogram; then, in checkpoints since issue 51, the extension
-    // (the MSD's origin and the transport measurement).
+    // (the MSD's origin, the transport measurement and, since extension 2, the shear).
     void load(std::istream& in);
     void load_extension(std::istream& in);
 };
@@ -86,10 +91,13 @@ template <int D> class HardRunOutput {
 
     // Measures those columns at time t (velocities of p must be current), appending their
     // values; samples the speed histogram if asked, and moves the record on.
-    // msd: the mean squared displacement since t = 0, for its column.
+    // msd: the mean squared displacement since t = 0, for its column. kinetic_integral:
+    // the engine's exact ∫ Σ m v v dt so far (the event engine under shear), for the
+    // kinetic part of the interval's pressure tensor instead of the mean of its two ends.
     HardMeasurement measure(const ParticleStore<D>& p, const Box<D>& box, double t,
                             const EventCounters<D>& counters, double msd,
-                            std::vector<double>& values);
+                            std::vector<double>& values,
+                            const SymTensor* kinetic_integral = nullptr);
 
     // speed_histogram.csv from the samples, plus `final_state` when the histogram is of
     // the final state only. Not in the record, so a continued run does not count it twice.

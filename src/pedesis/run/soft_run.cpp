@@ -6,6 +6,7 @@
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/observe/soft_observables.hpp"
 #include "pedesis/observe/thermo.hpp"
+#include "pedesis/run/shear_output.hpp"
 #include "pedesis/run/simulation.hpp"
 #include "pedesis/run/soft_checkpoint.hpp"
 #include "pedesis/run/transport_plan.hpp"
@@ -369,19 +370,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             console_ << fmt::format("  potential energy {:.6g}, MSD {:.6g}, mean pressure {:.6g}\n",
                                     last.at("potential_energy").template get<double>(), msd,
                                     mean_pressure);
-        if (state_.box.sheared()) {
-            write_file_atomically(o_.out_dir / "velocity_profile.csv", [&](std::ostream& out) {
-                book_.shear.write_profile(out, state_.box.lo(1), state_.box.length(1));
-            });
-            const nlohmann::json& eta = j.at("shear").at("viscosity");
-            if (!eta.at("value").is_null())
-                console_ << fmt::format(
-                    "  shear viscosity -<P_xy>/rate = {:.6g}{}\n",
-                    eta["value"].template get<double>(),
-                    eta["error"].is_null()
-                        ? std::string()
-                        : fmt::format(" +- {:.2g}", eta["error"].template get<double>()));
-        }
+        if (state_.box.sheared())
+            write_shear_results(o_.out_dir, book_.shear, state_.box, j, console_);
         if (book_.transport) {
             book_.transport->write_csv(
                 o_.out_dir / "transport.csv",

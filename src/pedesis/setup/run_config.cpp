@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 namespace pedesis {
@@ -238,6 +239,43 @@ void read_stepped_section(ConfigTable& root, RunConfig& c) {
 // simulation units).
 void read_event_output(const toml::table& doc, ConfigTable& root, RunConfig& c);
 
+// [event] thermostat = "rescale", temperature and thermostat_interval (by default, the
+// time in which a particle of the heaviest species at that temperature moves half the
+// smallest diameter).
+void read_event_thermostat(ConfigTable& ev, RunConfig& c) {
+    const auto kind = ev.string("thermostat");
+    if (!kind) {
+        for (const char* key : {"temperature", "thermostat_interval"})
+            if (ev.has(key))
+                throw InputError(ev.where(key) + ": needs event.thermostat = \"rescale\"");
+        return;
+    }
+    c.thermostat_where = ev.where("thermostat");
+    if (*kind != "rescale")
+        throw InputError(c.thermostat_where + ": unknown thermostat '" + *kind +
+                         "' (the event engine has \"rescale\")");
+    if (!ev.has("temperature"))
+        throw InputError(c.thermostat_where + ": needs event.temperature (the temperature held)");
+    c.thermostat_temperature = ev.number("temperature", 0.0);
+    if (!(c.thermostat_temperature > 0.0 && c.thermostat_temperature <= 1e100))
+        throw InputError(ev.where("temperature") + ": must be a positive number (at most 1e100)");
+    if (c.growth_rate > 0.0)
+        throw InputError(c.thermostat_where +
+                         ": growth (event.growth_rate) holds the kinetic energy itself; use one "
+                         "or the other");
+    double smallest = std::numeric_limits<double>::infinity(), heaviest = 0.0;
+    for (const auto& s : c.species) {
+        smallest = std::min(smallest, 2.0 * s.radius);
+        if (std::isfinite(s.mass)) heaviest = std::max(heaviest, s.mass);
+    }
+    const double fallback = heaviest > 0.0 && std::isfinite(smallest)
+                                ? 0.5 * smallest * std::sqrt(heaviest / c.thermostat_temperature)
+                                : 1.0;
+    c.thermostat_interval = ev.number("thermostat_interval", fallback);
+    if (!(c.thermostat_interval > 0.0 && std::isfinite(c.thermostat_interval)))
+        throw InputError(ev.where("thermostat_interval") + ": must be a positive finite number");
+}
+
 void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c) {
     const bool stepped = c.dynamics == "stepped";
     if (stepped)
@@ -273,6 +311,7 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
         for (const char* key : {"growth_packing_fraction", "growth_max_pressure"})
             if (ev->has(key) && c.growth_rate == 0)
                 throw InputError(ev->where(key) + ": needs event.growth_rate > 0");
+        read_event_thermostat(*ev, c);
         ev->finish();
     }
 
@@ -307,6 +346,15 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
         throw InputError(c.file + ": [run] needs at least one of " + stops);
     run->finish();
 
+    if (c.shear_rate > 0.0) {
+        if (c.growth_rate > 0.0)
+            throw InputError(c.shear_where + ": growth (event.growth_rate) and Lees–Edwards shear "
+                                             "cannot run together");
+        if (c.stop_energy_fraction)
+            throw InputError(run->where("energy_fraction") +
+                             ": under shear the viscous heating feeds the energy; stop on "
+                             "run.time or run.collisions_per_particle");
+    }
     if (c.stop_energy_fraction && !c.stop_time && !c.stop_collisions_per_particle &&
         c.restitution == 1.0 && c.wall_restitution == 1.0)
         throw InputError(
@@ -560,9 +608,9 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     c.species_defaults = defaults;
     read_species(root, c, defaults);
     check_particle_budget(c);
-    if (c.shear_rate > 0.0 && !c.soft())
+    if (c.shear_rate > 0.0 && c.dynamics == "stepped")
         throw InputError(c.shear_where + ": Lees–Edwards shear is not yet available for the " +
-                         c.dynamics + " engine (it runs with brownian, langevin and nve)");
+                         c.dynamics + " engine (it runs with event, brownian, langevin and nve)");
     if (c.soft())
         read_soft_sections(doc, root, c);
     else

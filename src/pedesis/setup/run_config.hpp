@@ -65,6 +65,10 @@ struct RunConfig {
     double growth_rate = 0.0; // Lubachevsky-Stillinger growth (see EventParams)
     double growth_packing_fraction = 0.0;
     double growth_max_pressure = 1e3;
+    // [event] thermostat = "rescale": temperature and interval (0: no thermostat)
+    double thermostat_temperature = 0.0;
+    double thermostat_interval = 0.0;
+    std::string thermostat_where; // of event.thermostat, for messages
 
     // [stepped] (dynamics = stepped): the time step is `dt` below, the other keys of [run]
     // and [output] are the event engine's, and [run] steps is a stop condition too
