@@ -313,7 +313,9 @@ template <int D> class EventEngine {
     template <class F> void for_each_candidate(std::uint32_t i, F&& f) const;
     // Under shear: also the cells around the images of i's centre across the y faces.
     template <class F> void for_each_candidate_sheared(std::uint32_t i, F&& f) const;
-    mutable std::vector<std::uint32_t> sheared_candidates_;
+    mutable std::vector<std::uint32_t> seen_; // its stamps (the last scan that met each)
+    mutable std::uint32_t stamp_ = 0;
+    std::vector<std::uint32_t> band_; // periodic_pass's particles near the y faces
     std::size_t grids_memory() const;
     EventQueue queue_;
     EventCounters<D> counters_;

@@ -154,7 +154,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         console_ << fmt::format("  CPU kernels: {}\n", simd_name(simd_level()));
         if (engine_->box().sheared())
             console_ << fmt::format("  Lees–Edwards shear at rate {:g}: flow along x, gradient "
-                                    "along y, frames' velocities peculiar\n",
+                                    "along y, velocities peculiar\n",
                                     engine_->box().shear_rate());
         if (c_.thermostat_temperature > 0.0)
             console_ << fmt::format("  thermostat: velocities rescaled to T = {:g} every {:g}\n",
