@@ -162,7 +162,7 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     if (params_.thermostat_temperature > 0.0)
         next_rescale_ = next_pass_time(now_, params_.thermostat_interval, "thermostat");
     if (box_.sheared()) {
-        next_shear_relist_ = next_pass_time(now_, shell_ / shear_velocity_, "shear");
+        next_shear_relist_ = next_pass_time(now_, slide_ / shear_velocity_, "shear");
         track_flux_moments(); // the exact kinetic stress of the log's P_xy
     }
 }
@@ -191,12 +191,24 @@ template <int D> bool EventEngine<D>::choose_skin() {
     const double contact = 2.0 * max_radius;
     const double room = 0.5 * min_periodic_length() - contact;
     if (!(room >= min_room_fraction * contact)) return false;
-    // (growth and the shear's slide each take another third of the skin between passes)
-    const bool third = growth_.growing || box_.sheared();
-    skin_ = std::min(skin_, (third ? 0.4 : 0.45) * room);
+    // (growth takes another third of the skin between passes; under shear the slide's
+    // allowance needs room too, choose_slide)
+    skin_ = std::min(skin_, (growth_.growing || box_.sheared() ? 0.4 : 0.45) * room);
     if (!(skin_ > 0.0)) throw InputError("event.skin must be positive");
-    shell_ = third ? skin_ / 3.0 : 0.5 * skin_;
+    shell_ = growth_.growing ? skin_ / 3.0 : 0.5 * skin_;
+    choose_slide();
     return true;
+}
+
+// How far the offset may move between shear passes: one list reach (contact + skin), but
+// less in a short box, where a pair's nearest image along x must stay the one that may
+// collide: contact + 2 skin + slide < L_x / 2 (choose_skin's cap leaves at least a fifth
+// of the room between contact and L/2 for it).
+template <int D> void EventEngine<D>::choose_slide() {
+    if (!box_.sheared()) return;
+    const double contact = 2.0 * *std::max_element(radius_.begin(), radius_.end());
+    const double room = 0.5 * box_.length(0) - contact - 2.0 * skin_;
+    slide_ = std::min(contact + skin_, (1.0 - 1e-9) * room);
 }
 
 template <int D> double EventEngine<D>::packing_fraction() const {
@@ -387,9 +399,10 @@ void EventEngine<D>::for_each_candidate(std::uint32_t i, F&& f) const {
 
 // A centre within reach of the top face meets the images above of particles near the
 // bottom, displaced by the offset along x: their cells lie around the centre's image
-// below, c - L_y e_y - offset e_x (and the reverse at the bottom face). The scans may
-// overlap (a short box, the plain scan's wrap across y): a stamp per particle gives each
-// candidate once, in the order first met.
+// below, c - L_y e_y - offset e_x (and the reverse at the bottom face), out to the reach
+// plus the slide's allowance along x (list_partners). The scans may overlap (a short box,
+// the plain scan's wrap across y): a stamp per particle gives each candidate once, in
+// the order first met.
 template <int D>
 template <class F>
 void EventEngine<D>::for_each_candidate_sheared(std::uint32_t i, F&& f) const {
@@ -419,10 +432,13 @@ void EventEngine<D>::for_each_candidate_sheared(std::uint32_t i, F&& f) const {
     for (std::size_t k = 0; k < classes; ++k) {
         const double reach = reach_[c * classes + k];
         grids_[k].for_each_reaching(centre, reach, once);
+        Vec<D> half{};
+        for (int a = 0; a < D; ++a) half[a] = reach;
+        half[0] += slide_;
         if (centre[1] + reach + margin >= box_.hi(1))
-            grids_[k].for_each_reaching(centre - image_shift, reach, once);
+            grids_[k].for_each_in_box(centre - image_shift, half, once);
         if (centre[1] - reach - margin <= box_.lo(1))
-            grids_[k].for_each_reaching(centre + image_shift, reach, once);
+            grids_[k].for_each_in_box(centre + image_shift, half, once);
     }
 }
 
@@ -706,11 +722,11 @@ template <int D> double EventEngine<D>::peculiar_kinetic_energy() const {
 }
 
 // Every particle at now_; the thermostat's rescaling if due; under shear, once the offset
-// has used up its third of the skin, every list that may hold a pair across the y faces
-// rebuilt. Only those pairs slide against each other, and only centres within the lists'
-// reach of a face can have partners across it: a band of about 2 reach / L_y of the
-// particles (a whole relist each time cost 90 % of a dilute sheared gas's run). Then the
-// events of those particles are predicted anew, or all of them after a rescaling.
+// has moved the lists' allowance slide_, every list that may hold a pair across the y
+// faces rebuilt. Only those pairs slide against each other, and only centres within the
+// lists' reach of a face can have partners across it: a band of about 2 reach / L_y of
+// the particles. Then the events of those particles are predicted anew, or all of them
+// after a rescaling.
 template <int D> void EventEngine<D>::periodic_pass() {
     for (std::uint32_t i = 0; i < size(); ++i) advance(i);
     const bool rescaled = now_ >= next_rescale_;
@@ -725,7 +741,7 @@ template <int D> void EventEngine<D>::periodic_pass() {
         for (std::uint32_t i = 0; i < size(); ++i)
             if (std::abs(ev_[i].centre[1]) >= edge) band_.push_back(i);
         for (std::uint32_t i : band_) rebuild_list(i);
-        next_shear_relist_ = next_pass_time(now_, shell_ / shear_velocity_, "shear");
+        next_shear_relist_ = next_pass_time(now_, slide_ / shear_velocity_, "shear");
     }
     if (rescaled)
         queue_.build_from(size(), [&](std::uint32_t i) { return predict(i); });
@@ -1321,7 +1337,7 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
             e.box_.shear_to_time(e.now_);
             e.shear_velocity_ = rate * e.box_.length(1);
             e.pair_times_ = nullptr;
-            e.shell_ = e.skin_ / 3.0;
+            e.choose_slide();
         }
     }
     // the config's thermostat from now on (the checkpoint's schedule if it had one)

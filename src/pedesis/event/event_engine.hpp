@@ -14,8 +14,9 @@
 //   in the laboratory frame, so flights stay straight; a particle wrapped across the y
 //   faces by k boxes loses k rate L_y of its x velocity, and a pair's nearest image k
 //   boxes above moves k rate L_y faster (pair_separation). The slide moves the images
-//   across the y faces against each other, so the lists' shell is skin/3 and every list
-//   is rebuilt each time the offset has moved another skin/3 (next_shear_relist_);
+//   across the y faces against each other: pairs across them are listed as if slide_
+//   closer along x, and the lists near the faces are rebuilt each time the offset has
+//   moved another slide_ (periodic_pass);
 // - optional Lubachevsky-Stillinger growth: every radius grows linearly in time (ratios
 //   kept), with the exact collision time and rule for growing spheres; the lists, the
 //   radii and a velocity rescaling (which holds the kinetic energy) are renewed at
@@ -213,9 +214,15 @@ template <int D> class EventEngine {
         return radius_[p_.species[i]] + radius_[p_.species[j]];
     }
     // The one criterion of every list build: list centres within contact + skin.
+    // Under shear a pair across the y faces (its nearest image taken across them) counts
+    // as if it were slide_ closer along x: the offset moves it by up to that much before
+    // the next shear pass decides again.
     bool list_partners(std::uint32_t i, std::uint32_t j) const {
         const double cut = contact(i, j) + skin_;
-        return norm2(box_.minimum_image(ev_[i].centre - ev_[j].centre)) < cut * cut;
+        Vec<D> d = box_.minimum_image(ev_[i].centre - ev_[j].centre);
+        if (box_.sheared() && std::abs(ev_[i].centre[1] - ev_[j].centre[1]) > box_.hi(1))
+            d[0] = std::max(0.0, std::abs(d[0]) - slide_);
+        return norm2(d) < cut * cut;
     }
     double radius_now(std::size_t species) const {
         return radius_[species] + radius_rate_[species] * (now_ - radius_time_);
@@ -269,6 +276,8 @@ template <int D> class EventEngine {
 
     // shear and the thermostat (never_time without them)
     double shear_velocity_ = 0.0; // rate L_y: how much faster the image above moves
+    double slide_ = 0.0;          // the offset's move the lists allow between shear passes
+    void choose_slide();
     double next_shear_relist_ = never_time;
     double next_rescale_ = never_time;
     ThermostatStatus thermostat_;

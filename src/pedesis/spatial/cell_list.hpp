@@ -234,6 +234,51 @@ template <int D> class CellList {
             if (a == D) break;
         }
     }
+    // Calls f(j) for the particles of every cell that meets the box `centre ± half` (per
+    // axis; widened by a margin above the binning's rounding), each cell once: periodic
+    // axes wrap (a span of the whole axis or more scans it once), wall axes are clipped.
+    // The event engine's scans across sliding faces, whose reach is longer along x.
+    template <class F> void for_each_in_box(const Vec<D>& centre, const Vec<D>& half, F&& f) const {
+        std::array<int, D> first{}, count{};
+        for (int a = 0; a < D; ++a) {
+            const double margin = 1e-9 * box_.length(a);
+            const double from = (centre[a] - half[a] - margin - box_.lo(a)) * inv_w_[a];
+            const double to = (centre[a] + half[a] + margin - box_.lo(a)) * inv_w_[a];
+            if (!(std::isfinite(from) && std::isfinite(to))) {
+                first[a] = 0;
+                count[a] = n_[a];
+                continue;
+            }
+            int lo = clamped_int(std::floor(from), -(1 << 30), 1 << 30);
+            int hi = clamped_int(std::floor(to), -(1 << 30), 1 << 30);
+            if (!box_.periodic(a)) {
+                lo = std::clamp(lo, 0, n_[a] - 1);
+                hi = std::clamp(hi, 0, n_[a] - 1);
+            }
+            const long span = static_cast<long>(hi) - lo + 1;
+            if (span >= n_[a]) {
+                first[a] = 0;
+                count[a] = n_[a];
+            } else {
+                first[a] = ((lo % n_[a]) + n_[a]) % n_[a];
+                count[a] = static_cast<int>(span);
+            }
+        }
+        std::array<int, D> k{};
+        while (true) {
+            std::int32_t idx = 0;
+            for (int a = 0; a < D; ++a) {
+                int x = first[a] + k[a];
+                if (x >= n_[a]) x -= n_[a];
+                idx += x * stride_[a];
+            }
+            for (std::int32_t j = head_[idx]; j != none; j = next_[j])
+                f(static_cast<std::uint32_t>(j));
+            int a = 0;
+            while (a < D && ++k[a] == count[a]) k[a++] = 0;
+            if (a == D) break;
+        }
+    }
     // Cells along each axis needed to reach distance `reach` from any point of a cell,
     // whatever the binning's rounding.
     int cells_to_reach(double reach) const {
