@@ -261,9 +261,7 @@ TEST_F(Shear, BadShearIsRefusedWithOneMessage) {
     expect_rejected(
         with("shear_rate = 0.5", "shear_rate = 0.5\nboundary = [\"wall\", \"periodic\"]"),
         {"shear_rate", "axis x is a wall"});
-    // (the event engine's shear: cli_event_shear_test)
-    expect_rejected(with("dynamics = \"langevin\"", "dynamics = \"stepped\""),
-                    {"shear_rate", "not yet available for the stepped"});
+    // (the event and stepped engines' shear: cli_event_shear_test, cli_stepped_shear_test)
     // the streaming at the faces, rate L_y dt / 2 = 40 * 12 * 0.004 / 2 = 0.96 a step,
     // is more than half the skin
     expect_rejected(with("shear_rate = 0.5", "shear_rate = 40"),

@@ -152,15 +152,18 @@ TEST(HardImageCounts, SteppedGasPathsStayContinuousThroughCollisions) {
 }
 
 // A version-5 event checkpoint (version-3 stepped) ends with the image counts (a u64
-// count and n D int32), a flag and the flux moments: without them, and with the version
-// before, it is the file an older pedesis wrote.
+// count and n D int32), a flag and the flux moments, and a later version (`saved`) with
+// `later` bytes more (the shear state: event 6, five 8-byte numbers; stepped 4, the
+// rate): without them all, and with the version before the counts, it is the file an
+// older pedesis wrote.
 constexpr std::size_t moments_bytes = 1 + sizeof(FluxMoments<3>);
-std::string older_version(std::string bytes, std::uint32_t version, std::size_t n) {
+std::string older_version(std::string bytes, std::uint32_t saved, std::size_t later,
+                          std::uint32_t version, std::size_t n) {
     std::uint32_t v = 0;
     std::memcpy(&v, bytes.data() + 8, 4);
-    EXPECT_EQ(v, version + 1);
+    EXPECT_EQ(v, saved);
     std::memcpy(bytes.data() + 8, &version, 4);
-    const std::size_t tail = 8 + n * 3 * sizeof(std::int32_t) + moments_bytes;
+    const std::size_t tail = 8 + n * 3 * sizeof(std::int32_t) + moments_bytes + later;
     std::uint64_t count = 0;
     std::memcpy(&count, bytes.data() + bytes.size() - tail, 8);
     EXPECT_EQ(count, n);
@@ -179,7 +182,7 @@ TEST(HardImageCounts, CheckpointsCarryTheCountsAndOlderOnesLoadWithNone) {
     e.save(out);
     std::istringstream in(out.str());
     EventEngine<3> same = EventEngine<3>::load(in, EventParams{});
-    std::istringstream old_in(older_version(out.str(), 4, p.size()));
+    std::istringstream old_in(older_version(out.str(), 6, 40, 4, p.size()));
     EventEngine<3> old = EventEngine<3>::load(old_in, EventParams{});
     limits.time = 6.0;
     e.run(limits);
@@ -210,7 +213,7 @@ TEST(HardImageCounts, CheckpointsCarryTheCountsAndOlderOnesLoadWithNone) {
     std::istringstream sin(sout.str());
     SteppedEngine<3> ssame = SteppedEngine<3>::load(sin, sp);
     EXPECT_EQ(ssame.images(), st.images());
-    std::istringstream sold_in(older_version(sout.str(), 2, p.size()));
+    std::istringstream sold_in(older_version(sout.str(), 4, 8, 2, p.size()));
     SteppedEngine<3> sold = SteppedEngine<3>::load(sold_in, sp);
     for (const auto& k : sold.images()) EXPECT_EQ(k, (ImageCount<3>{}));
     while (st.steps() < 600) {

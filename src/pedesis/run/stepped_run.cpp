@@ -10,6 +10,7 @@
 #include "pedesis/run/hard_checkpoint.hpp"
 #include "pedesis/run/hard_run_engine.hpp"
 #include "pedesis/run/hard_run_output.hpp"
+#include "pedesis/run/shear_output.hpp"
 #include "pedesis/setup/build_system.hpp"
 #include "pedesis/stepped/stepped_engine.hpp"
 #include "pedesis/stepped/time_step.hpp"
@@ -68,10 +69,16 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
   public:
     SteppedRunEngine(const RunConfig& c, const RunOptions& o, std::ostream& console)
         : HardRunEngine<D>(c, o, console) {
-        const Box<D> box = build_box<D>(c_);
+        Box<D> box = build_box<D>(c_);
+        if (c_.shear_rate > 0.0) box.set_shear_rate(c_.shear_rate);
         if (o_.restart) {
             engine_ = load_checkpoint<D>(*o_.restart, c_, record_);
             const auto& e = *engine_;
+            if (e.box().shear_rate() != c_.shear_rate)
+                throw InputError(
+                    fmt::format("{}: [box] shear_rate = {:g} does not match the checkpoint's {:g}",
+                                c_.shear_where.empty() ? c_.file : c_.shear_where, c_.shear_rate,
+                                e.box().shear_rate()));
             samples_ = run_speed_samples(e.particles(), e.box(), c_, e.time(), e.steps(),
                                          e.counters().pair_collisions);
             check_time_step(e.particles(), c_.dt, c_.max_move, c_.dt_where, samples_);
@@ -127,8 +134,15 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
 
     void measure(std::vector<double>& values) override {
         const auto& e = *engine_;
+        // the velocity profile at each row after t = 0 (P_xy, from the exact kinetic
+        // integral: out_.measure)
+        if (e.box().sheared() && e.time() > record_.last_log_time)
+            record_.shear.add_profile(e.particles(), e.box());
+        SymTensor kinetic_integral{};
+        if (e.box().sheared()) kinetic_integral = e.flux_moments().kinetic_integral;
         const HardMeasurement m =
-            out_.measure(e.particles(), e.box(), e.time(), e.counters(), msd(), values);
+            out_.measure(e.particles(), e.box(), e.time(), e.counters(), msd(), values,
+                         e.box().sheared() ? &kinetic_integral : nullptr);
         double sum_v2 = 0.0, sum_v = 0.0;
         for (std::size_t i = 0; i < e.size(); ++i) {
             if (std::isinf(e.particles().mass(i))) continue;
@@ -156,6 +170,10 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
                                 D, e.size(), box_text(e.box()),
                                 packing_fraction(e.particles(), e.box()), c_.dt, c_.max_move,
                                 o_.out_dir.string());
+        if (e.box().sheared())
+            console_ << fmt::format("  Lees–Edwards shear at rate {:g}: flow along x, gradient "
+                                    "along y, frames' velocities peculiar\n",
+                                    e.box().shear_rate());
         if (c_.dt > suggested)
             console_ << fmt::format(
                 "  note: dt is above {:.2g}, the largest that also suits the fastest particles "
@@ -179,6 +197,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
             C ? static_cast<double>(e.stats().late_collisions) / static_cast<double>(C) : 0.0;
         j["chained_events"] = e.stats().chained_events;
         j["most_events_in_step"] = e.stats().most_events_in_step;
+        if (e.box().sheared()) j["shear"] = record_.shear.summary(e.box().shear_rate());
         return j;
     }
 
@@ -191,6 +210,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
                                 e.counters().pair_collisions,
                                 j["collisions_per_particle"].template get<double>());
         out_.print_summary(console_, j, e.box());
+        if (e.box().sheared()) write_shear_results(o_.out_dir, record_.shear, e.box(), j, console_);
         this->write_transport(j, e.box(), e.particles());
         console_ << fmt::format(
             "  late collisions    {} ({:.3g} of all: from an overlap left by a grazing "

@@ -608,9 +608,6 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     c.species_defaults = defaults;
     read_species(root, c, defaults);
     check_particle_budget(c);
-    if (c.shear_rate > 0.0 && c.dynamics == "stepped")
-        throw InputError(c.shear_where + ": Lees–Edwards shear is not yet available for the " +
-                         c.dynamics + " engine (it runs with event, brownian, langevin and nve)");
     if (c.soft())
         read_soft_sections(doc, root, c);
     else

@@ -77,9 +77,15 @@ SteppedEngine<D>::SteppedEngine(ParticleStore<D> particles, const Box<D>& box,
                 tag_name(p_.tag[i]), r));
     }
     image_.assign(p_.size(), {});
+    if (box_.sheared()) box_.shear_to_time(time());
     for (std::size_t i = 0; i < p_.size(); ++i) wrap_counting<D>(box_, p_.position[i], image_[i]);
+    // the given velocities are peculiar: the flow starts linear
+    if (box_.sheared())
+        for (std::size_t i = 0; i < p_.size(); ++i)
+            if (!std::isinf(p_.mass(i))) p_.velocity[i][0] += flow(p_.position[i][1]);
     setup();
     check_no_overlap(1e-10);
+    if (box_.sheared()) track_flux_moments(); // the exact kinetic stress of the log's P_xy
 }
 
 template <int D> void SteppedEngine<D>::setup() {
@@ -99,6 +105,9 @@ template <int D> void SteppedEngine<D>::setup() {
         walled_[a] = !box_.periodic(a);
         any_periodic_ = any_periodic_ || box_.periodic(a);
     }
+    shear_velocity_ = box_.shear_rate() * box_.length(1);
+    shear_reach_ = 2.0 * max_radius * (1.0 + 1e-9) + 1e-9 * box_.length(1);
+    if (box_.sheared()) check_shear_step(max_radius);
     // Cells at least one contact distance wide find every overlap in the 3^D cells around
     // a particle; in a dilute gas they are widened to about one particle per cell, so
     // that the scan does not visit mostly empty cells.
@@ -110,13 +119,38 @@ template <int D> void SteppedEngine<D>::setup() {
     heap_.clear();
 }
 
+// The flow's velocity difference across a contact distance moves touching particles
+// apart like a peculiar speed, which max_move bounds (the speed check sees only these).
+template <int D> void SteppedEngine<D>::check_shear_step(double max_radius) const {
+    double min_radius = max_radius;
+    for (double r : radius_) min_radius = std::min(min_radius, r);
+    const double streaming = box_.shear_rate() * 2.0 * max_radius * dt_;
+    if (streaming > params_.max_move * min_radius)
+        throw InputError(fmt::format(
+            "[box] shear_rate = {:g} with [stepped] dt = {:g}: the flow alone moves touching "
+            "particles {:.3g} radii past each other in one step, more than max_move = {:g}; "
+            "lower dt to {:.2g} or less (or the rate)",
+            box_.shear_rate(), dt_, streaming / min_radius, params_.max_move,
+            params_.max_move * min_radius / (box_.shear_rate() * 2.0 * max_radius)));
+}
+
 template <int D> double SteppedEngine<D>::kinetic_energy() const {
+    const ParticleStore<D>& p = particles();
     double k = 0.0;
-    for (std::size_t i = 0; i < p_.size(); ++i) {
-        const double im = inv_mass_[p_.species[i]];
-        if (im > 0.0) k += 0.5 * norm2(p_.velocity[i]) / im;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const double im = inv_mass_[p.species[i]];
+        if (im > 0.0) k += 0.5 * norm2(p.velocity[i]) / im;
     }
     return k;
+}
+
+template <int D> const ParticleStore<D>& SteppedEngine<D>::peculiar_particles() const {
+    if (peculiar_fresh_) return peculiar_;
+    peculiar_ = p_;
+    for (std::size_t i = 0; i < p_.size(); ++i)
+        if (inv_mass_[p_.species[i]] > 0.0) peculiar_.velocity[i][0] -= flow(p_.position[i][1]);
+    peculiar_fresh_ = true;
+    return peculiar_;
 }
 
 // Independent speeds drawn in a run as long again as this one so far: N at the start
@@ -127,11 +161,15 @@ template <int D> double SteppedEngine<D>::speed_samples_so_far() const {
 }
 
 template <int D> void SteppedEngine<D>::check_speeds() const {
+    // (under shear, the peculiar speed: the flow's is the neighbours' too)
     bool too_fast = false;
-    for (std::size_t i = 0; i < p_.size(); ++i)
-        too_fast = too_fast || norm2(p_.velocity[i]) > max_speed2_[p_.species[i]];
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+        Vec<D> v = p_.velocity[i];
+        if (inv_mass_[p_.species[i]] > 0.0) v[0] -= flow(p_.position[i][1]);
+        too_fast = too_fast || norm2(v) > max_speed2_[p_.species[i]];
+    }
     if (!too_fast) return;
-    const FastestParticle f = fastest_particle(p_, dt_);
+    const FastestParticle f = fastest_particle(particles(), dt_);
     throw RunError(fmt::format(
         "stepped engine: at step {} {} (species '{}') would move {:.4g} = {:.3g} radii in one "
         "step of dt = {:g}, more than max_move = {:g} radii, so it could pass through another "
@@ -144,9 +182,13 @@ template <int D> void SteppedEngine<D>::check_speeds() const {
 template <int D> void SteppedEngine<D>::step() {
     check_speeds();
     const auto n = static_cast<std::uint32_t>(p_.size());
+    // the positions are those at the step's end, and so is the offset (time() after it)
+    if (box_.sheared())
+        box_.shear_to_time(time_base_ + static_cast<double>(step_ + 1 - step_base_) * dt_);
+    peculiar_fresh_ = false;
     for (std::uint32_t i = 0; i < n; ++i) {
         p_.position[i] += p_.velocity[i] * dt_;
-        if (any_periodic_) wrap_counting<D>(box_, p_.position[i], image_[i]);
+        if (any_periodic_) wrap_particle(i);
         segment_start_[i] = 0.0;
         events_[i] = 0;
     }
@@ -154,7 +196,7 @@ template <int D> void SteppedEngine<D>::step() {
     heap_.clear();
     for (std::uint32_t i = 0; i < n; ++i) {
         find_wall_crossing(i);
-        cells_.for_each_near(p_.position[i], [&](std::uint32_t j) {
+        for_each_candidate(cells_, p_.position[i], [&](std::uint32_t j) {
             if (j > i) consider(i, j);
         });
     }
@@ -212,9 +254,36 @@ template <int D> void SteppedEngine<D>::find_wall_crossing(std::uint32_t i) {
 }
 
 template <int D> void SteppedEngine<D>::find_overlaps_of(std::uint32_t i, std::uint32_t skip) {
-    cells_.for_each_near(p_.position[i], [&](std::uint32_t j) {
+    for_each_candidate(cells_, p_.position[i], [&](std::uint32_t j) {
         if (j != i && j != skip) consider(i, j);
     });
+}
+
+// A centre within a contact distance of the top face touches the images above of
+// particles near the bottom, displaced by the offset along x: their cells lie around the
+// centre's image below, r - L_y e_y - offset e_x (and the reverse at the bottom face).
+// The scans may overlap (a short box, the plain scan's wrap across y), so there the
+// candidates are gathered, sorted and given once each.
+template <int D>
+template <class F>
+void SteppedEngine<D>::for_each_candidate(const CellList<D>& cells, const Vec<D>& r, F&& f) const {
+    const bool top = box_.sheared() && r[1] + shear_reach_ >= box_.hi(1);
+    const bool bottom = box_.sheared() && r[1] - shear_reach_ <= box_.lo(1);
+    if (!top && !bottom) [[likely]] {
+        cells.for_each_near(r, f);
+        return;
+    }
+    Vec<D> image{};
+    image[0] = box_.shear_offset();
+    image[1] = box_.length(1);
+    candidates_.clear();
+    const auto keep = [&](std::uint32_t j) { candidates_.push_back(j); };
+    cells.for_each_near(r, keep);
+    if (top) cells.for_each_near(r - image, keep);
+    if (bottom) cells.for_each_near(r + image, keep);
+    std::sort(candidates_.begin(), candidates_.end());
+    candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+    for (std::uint32_t j : candidates_) f(j);
 }
 
 // An overlapping pair collided when it entered the overlap, if that lies on the current
@@ -222,9 +291,10 @@ template <int D> void SteppedEngine<D>::find_overlaps_of(std::uint32_t i, std::u
 // grazing collision missed in an earlier step or segment), it collides at that moment if
 // it approaches then, and is left to separate otherwise.
 template <int D>
-void SteppedEngine<D>::overlapping(std::uint32_t i, std::uint32_t j, const Vec<D>& dr,
-                                   double sigma) {
-    const Vec<D> dv = p_.velocity[i] - p_.velocity[j];
+void SteppedEngine<D>::overlapping(std::uint32_t i, std::uint32_t j, const Vec<D>& dr, double sigma,
+                                   double dvx) {
+    Vec<D> dv = p_.velocity[i] - p_.velocity[j];
+    dv[0] += dvx;
     const double tau = contact_rewind_time(dr, dv, sigma);
     if (tau < 0.0) return; // no relative motion
     const double start = std::max(segment_start_[i], segment_start_[j]);
@@ -242,24 +312,41 @@ void SteppedEngine<D>::overlapping(std::uint32_t i, std::uint32_t j, const Vec<D
 template <int D> void SteppedEngine<D>::collide(const Event& e) {
     const std::uint32_t i = e.i, j = e.j;
     const double back = dt_ - e.when;
-    const Vec<D> vi0 = p_.velocity[i], vj0 = p_.velocity[j];
-    Vec<D> dr = p_.position[i] - p_.position[j];
-    if (any_periodic_) dr = box_.minimum_image(dr);
+    // under shear, j collides as the image nearest i, whose x velocity differs by -slide
+    double slide = 0.0;
+    Vec<D> dr = separation(p_.position[i] - p_.position[j], slide);
+    const Vec<D> vi0 = p_.velocity[i];
+    Vec<D> vj0 = p_.velocity[j];
+    vj0[0] -= slide;
     dr -= (vi0 - vj0) * back; // the separation at the collision
     const double r = norm(dr);
     if (!(r > 0.0)) return; // coincident centres: no line of centres (never from a valid state)
     const Vec<D> n = dr * (1.0 / r);
     if (dot(vi0 - vj0, n) >= 0.0) return; // touching while separating, by rounding
+    p_.velocity[j][0] -= slide;
     const PairImpulse imp = collide_pair(p_.velocity[i], p_.velocity[j], n,
                                          inv_mass_[p_.species[i]], inv_mass_[p_.species[j]], 1.0);
-    p_.position[i] += (p_.velocity[i] - vi0) * back;
-    p_.position[j] += (p_.velocity[j] - vj0) * back;
+    const Vec<D> dvi = p_.velocity[i] - vi0, dvj = p_.velocity[j] - vj0;
+    p_.velocity[j][0] += slide;
     add_collision_virial(counters_, imp.impulse, n, dr);
     if (moments_on_) [[unlikely]] {
-        moments_.advance(time() + e.when); // (step_ counts the steps before this one)
-        moments_.collision(mass_of(p_.species[i]), vi0, p_.velocity[i], mass_of(p_.species[j]), vj0,
-                           p_.velocity[j], dr);
+        const double now = time() + e.when; // (step_ counts the steps before this one)
+        if (box_.sheared()) {
+            // peculiar velocities, at the heights of the collision (j's image has j's own)
+            moments_.advance_sheared(now, box_.shear_rate());
+            Vec<D> ci0 = vi0, cj0 = vj0;
+            ci0[0] -= flow(p_.position[i][1] - vi0[1] * back);
+            cj0[0] += slide - flow(p_.position[j][1] - vj0[1] * back);
+            moments_.collision(mass_of(p_.species[i]), ci0, ci0 + dvi, mass_of(p_.species[j]), cj0,
+                               cj0 + dvj, dr);
+        } else {
+            moments_.advance(now);
+            moments_.collision(mass_of(p_.species[i]), vi0, p_.velocity[i], mass_of(p_.species[j]),
+                               vj0, p_.velocity[j], dr);
+        }
     }
+    p_.position[i] += dvi * back;
+    p_.position[j] += dvj * back;
     ++counters_.pair_collisions;
     if (e.late) ++stats_.late_collisions;
     moved(i, e.when);
@@ -274,14 +361,18 @@ template <int D> void SteppedEngine<D>::track_flux_moments() {
     if (moments_on_) return;
     moments_ = FluxMoments<D>{};
     moments_.t = time();
-    for (std::size_t i = 0; i < p_.size(); ++i)
-        moments_.count(mass_of(p_.species[i]), p_.velocity[i], 1.0);
+    const ParticleStore<D>& p = particles(); // (peculiar under shear)
+    for (std::size_t i = 0; i < p.size(); ++i)
+        moments_.count(mass_of(p.species[i]), p.velocity[i], 1.0);
     moments_on_ = true;
 }
 
 template <int D> FluxMoments<D> SteppedEngine<D>::flux_moments() const {
     FluxMoments<D> m = moments_;
-    m.advance(time());
+    if (box_.sheared())
+        m.advance_sheared(time(), box_.shear_rate());
+    else
+        m.advance(time());
     return m;
 }
 
@@ -295,7 +386,19 @@ template <int D> void SteppedEngine<D>::bounce(const Event& e) {
     else
         x = 2.0 * (box_.lo(a) + r) - x;
     const double im = inv_mass_[p_.species[i]];
+    // under shear (walls on z only) the kinetic sums see the bounce
+    Vec<D> c0 = p_.velocity[i];
+    const bool recount = moments_on_ && box_.sheared();
+    if (recount) {
+        moments_.advance_sheared(time() + e.when, box_.shear_rate());
+        c0[0] -= flow(p_.position[i][1] - c0[1] * (dt_ - e.when));
+        moments_.count(1.0 / im, c0, -1.0);
+    }
     counters_.wall_impulse[a][side] += collide_wall(p_.velocity[i][a], 1.0 / im, 1.0);
+    if (recount) {
+        c0[a] = p_.velocity[i][a];
+        moments_.count(1.0 / im, c0, 1.0);
+    }
     ++counters_.wall_collisions;
     moved(i, e.when);
     find_wall_crossing(i);
@@ -304,8 +407,16 @@ template <int D> void SteppedEngine<D>::bounce(const Event& e) {
 
 // Bookkeeping after an event of particle i at `when`: a new segment, a new version of
 // its events, its cell.
+template <int D> void SteppedEngine<D>::wrap_particle(std::uint32_t i) {
+    const Vec<D> shift = box_.wrap(p_.position[i]);
+    for (int a = 0; a < D; ++a) image_[i][a] += static_cast<std::int32_t>(shift[a]);
+    // (the image k boxes above moves k rate L_y faster: the same motion, told in the box)
+    if (box_.sheared() && inv_mass_[p_.species[i]] > 0.0)
+        p_.velocity[i][0] -= shift[1] * shear_velocity_;
+}
+
 template <int D> void SteppedEngine<D>::moved(std::uint32_t i, double when) {
-    if (any_periodic_) wrap_counting<D>(box_, p_.position[i], image_[i]);
+    if (any_periodic_) wrap_particle(i);
     segment_start_[i] = when;
     ++events_[i];
     cells_.remove(i);
@@ -327,9 +438,10 @@ template <int D> void SteppedEngine<D>::check_no_overlap(double rel_tol) const {
     CellList<D> cells(box_, 2.0 * max_radius);
     cells.build(p_.position);
     for (std::uint32_t i = 0; i < p_.size(); ++i) {
-        cells.for_each_near(p_.position[i], [&](std::uint32_t j) {
+        for_each_candidate(cells, p_.position[i], [&](std::uint32_t j) {
             if (j <= i) return;
-            const double d = norm(box_.minimum_image(p_.position[i] - p_.position[j]));
+            double unused = 0.0;
+            const double d = norm(separation(p_.position[i] - p_.position[j], unused));
             const double c = contact(i, j);
             if (d < c * (1.0 - rel_tol)) {
                 const std::string m = fmt::format(
@@ -345,8 +457,9 @@ template <int D> void SteppedEngine<D>::check_no_overlap(double rel_tol) const {
 namespace {
 constexpr std::uint64_t checkpoint_magic = 0x5054535344455045ull; // "EPEDSSTP" in memory order
 // 2: the collision virial's off-diagonal components; 3: image counts and the flux moments
-// (version 2 is read with none crossed and no moments)
-constexpr std::uint32_t checkpoint_version = 3;
+// (version 2 is read with none crossed and no moments); 4: the shear rate (3 is read
+// unsheared)
+constexpr std::uint32_t checkpoint_version = 4;
 constexpr std::uint32_t oldest_checkpoint_version = 2;
 } // namespace
 
@@ -368,6 +481,7 @@ template <int D> void SteppedEngine<D>::save(std::ostream& out) const {
     put(out, image_);
     put<std::uint8_t>(out, moments_on_);
     put(out, moments_);
+    put(out, box_.shear_rate());
 }
 
 template <int D>
@@ -400,6 +514,13 @@ SteppedEngine<D> SteppedEngine<D>::load(std::istream& in, const SteppedParams& p
         e.moments_on_ = on != 0;
         get(in, e.moments_);
     }
+    if (version >= 4) {
+        double rate = 0.0;
+        get(in, rate);
+        e.box_.set_shear_rate(rate); // (InputError if not a rate, or with walls across the flow)
+        if (e.box_.sheared() && !e.moments_on_)
+            throw InputError("checkpoint: a sheared run without its flux moments (corrupt)");
+    }
     const std::size_t n = e.p_.position.size();
     if (version < 3) e.image_.assign(n, {});
     if (n == 0 || e.p_.velocity.size() != n || e.p_.tag.size() != n || e.p_.species.size() != n ||
@@ -415,6 +536,7 @@ SteppedEngine<D> SteppedEngine<D>::load(std::istream& in, const SteppedParams& p
         e.step_base_ = e.step_;
         e.dt_ = params.dt;
     }
+    if (e.box_.sheared()) e.box_.shear_to_time(e.time());
     e.setup();
     return e;
 }

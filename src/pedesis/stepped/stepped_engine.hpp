@@ -27,6 +27,20 @@
 // inside such a missed overlap collides at the segment start, from an overlapping
 // position (a "late" collision). Energy is conserved by every collision, late or not,
 // and momentum too apart from what the walls take, to rounding.
+//
+// Lees-Edwards shear (a sheared box, core/box.hpp; the event engine's design): the
+// velocities inside are the laboratory ones, so every segment is still straight; a wrap
+// across the y faces by k boxes takes k rate L_y off v_x. During a step the box holds
+// the offset of the step's end, where the positions are: a pair's separation is that of
+// the nearest image at that offset, whose x velocity differs by the slide, so the
+// rewind finds the moment of contact exactly; the cell scan also looks around the
+// images of a centre across the y faces. Nothing else depends on the offset's change
+// within a step (the cells are rebuilt each step from the positions at its end), but the
+// flow's own velocity difference across a contact distance must keep to max_move (the
+// constructor refuses a rate and dt that do not). Out (particles(), kinetic_energy()):
+// peculiar velocities, v - rate y e_x. The Helfand sums are always kept, of the peculiar
+// velocities (FluxMoments::advance_sheared between events), so the kinetic stress is
+// integrated exactly.
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/collision_counters.hpp"
 #include "pedesis/core/flux_moments.hpp"
@@ -35,6 +49,7 @@
 #include "pedesis/spatial/cell_list.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <iosfwd>
 #include <vector>
@@ -72,13 +87,15 @@ template <int D> class SteppedEngine {
     double dt() const { return dt_; }
     const SteppedParams& params() const { return params_; }
     const Box<D>& box() const { return box_; }
-    // positions are those at time(), inside the walls and wrapped on periodic axes
-    const ParticleStore<D>& particles() const { return p_; }
+    // positions are those at time(), inside the walls and wrapped on periodic axes; under
+    // shear the velocities are the peculiar ones (a copy made once a step, when asked)
+    const ParticleStore<D>& particles() const { return box_.sheared() ? peculiar_particles() : p_; }
     // the periodic boxes each particle has crossed (unwrapped: position + image * L)
     const std::vector<ImageCount<D>>& images() const { return image_; }
     Vec<D> unwrapped_now(std::size_t i) const {
         return unwrapped<D>(box_, p_.position[i], image_[i]);
     }
+    // (in the laboratory frame)
     const Vec<D>& velocity(std::size_t i) const { return p_.velocity[i]; }
     const EventCounters<D>& counters() const { return counters_; }
     // From now on, keeps the running integrals of the Helfand moments (core/flux_moments.hpp),
@@ -86,9 +103,11 @@ template <int D> class SteppedEngine {
     void track_flux_moments();
     bool tracks_flux_moments() const { return moments_on_; }
     // Those integrals carried to time() (G's collisional part is counters().virial).
+    // Under shear they are always kept, of the peculiar velocities, without the heat sums.
     FluxMoments<D> flux_moments() const;
     const SteppedStats& stats() const { return stats_; }
     std::size_t size() const { return p_.size(); }
+    // Under shear, of the peculiar velocities: the heat, not the flow.
     double kinetic_energy() const;
 
     // Throws if two particles overlap by more than rel_tol of their contact distance:
@@ -123,22 +142,42 @@ template <int D> class SteppedEngine {
     SteppedEngine() = default;
     void setup();
     void check_speeds() const;
+    void check_shear_step(double max_radius) const;
     double speed_samples_so_far() const;
     void find_wall_crossing(std::uint32_t i);
     void find_overlaps_of(std::uint32_t i, std::uint32_t skip);
     // Most pairs of the cell scan do not touch: that test is here, small enough to inline
     // into the scan; the rest of the work is out of line.
     void consider(std::uint32_t i, std::uint32_t j) {
-        Vec<D> dr = p_.position[i] - p_.position[j];
-        if (any_periodic_) dr = box_.minimum_image(dr);
+        double dvx = 0.0;
+        const Vec<D> dr = separation(p_.position[i] - p_.position[j], dvx);
         const double sigma = contact(i, j);
-        if (norm2(dr) < sigma * sigma) overlapping(i, j, dr, sigma);
+        if (norm2(dr) < sigma * sigma) overlapping(i, j, dr, sigma, dvx);
     }
-    void overlapping(std::uint32_t i, std::uint32_t j, const Vec<D>& dr, double sigma);
+    // The separation r_i - r_j of j's nearest image, from d = r_i - r_j of positions in
+    // the box; under shear, adds to `dvx` the change of the relative velocity's x
+    // component for that image (k boxes above moves k rate L_y faster: -k rate L_y).
+    Vec<D> separation(const Vec<D>& d, double& dvx) const {
+        if (!any_periodic_) return d;
+        const Vec<D> m = box_.minimum_image(d);
+        if (box_.sheared()) [[unlikely]]
+            dvx -= std::round((d[1] - m[1]) / box_.length(1)) * shear_velocity_;
+        return m;
+    }
+    // f(j) once for every particle in the cells around r, and under shear also around r's
+    // images across the y faces (where the particles it can touch there lie).
+    template <class F>
+    void for_each_candidate(const CellList<D>& cells, const Vec<D>& r, F&& f) const;
+    void overlapping(std::uint32_t i, std::uint32_t j, const Vec<D>& dr, double sigma, double dvx);
     void push(const Event& e);
     void collide(const Event& e);
     void bounce(const Event& e);
     void moved(std::uint32_t i, double when);
+    // Wraps i into the box, counting images; under shear its v_x follows a y crossing.
+    void wrap_particle(std::uint32_t i);
+    // The flow's x velocity at height y (0 without shear).
+    double flow(double y) const { return box_.shear_rate() * y; }
+    const ParticleStore<D>& peculiar_particles() const;
     double contact(std::uint32_t i, std::uint32_t j) const {
         return radius_[p_.species[i]] + radius_[p_.species[j]];
     }
@@ -169,6 +208,13 @@ template <int D> class SteppedEngine {
         return inv_mass_[species] > 0.0 ? 1.0 / inv_mass_[species] : 0.0; // obstacles: none
     }
     SteppedStats stats_;
+
+    // shear
+    double shear_velocity_ = 0.0; // rate L_y: how much faster the image above moves
+    double shear_reach_ = 0.0;    // a centre this close to a y face meets images across it
+    mutable std::vector<std::uint32_t> candidates_;
+    mutable ParticleStore<D> peculiar_;
+    mutable bool peculiar_fresh_ = false;
 };
 
 extern template class SteppedEngine<2>;
