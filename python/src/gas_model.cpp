@@ -132,7 +132,8 @@ template <int D, class Engine> class Gas : public GasModel {
 
     // The particles and box of the config, handed to `make` for the engine.
     template <class Make> void start(const RunConfig& c, Make make) {
-        const Box<D> box = build_box<D>(c);
+        Box<D> box = build_box<D>(c);
+        if (c.shear_rate > 0.0) box.set_shear_rate(c.shear_rate); // as `pedesis run` does
         ParticleStore<D> p = build_particles<D>(c, box);
         engine_ = make(std::move(p), box);
         last_time_ = engine_->time();

@@ -137,3 +137,30 @@ def test_event_gas_growth_stops_at_the_packing_fraction():
     assert np.allclose(r, r[0])
     assert 400 * np.pi * r[0] ** 2 / 40.0**2 == pytest.approx(0.5, rel=1e-9)
     assert g.run(time=g.time + 1.0) == "time"
+
+
+@pytest.mark.parametrize("dynamics", ["event", "stepped"])
+def test_a_gas_with_a_shear_rate_is_sheared(dynamics):
+    # [box] shear_rate reaches the engine: one disk at (0, 4.5) in a 10 x 10 box at rate
+    # 0.2 with peculiar velocity (0.3, 1) crosses the top face and lands, at t = 2, at
+    # (-1.6, -3.5) with peculiar velocity (-0.1, 1) (worked out in
+    # tests/unit/event_shear_test.cpp); without the shear it would be at (0.6, -3.5)
+    stepped = '[stepped]\ndt = 0.01\n' if dynamics == "stepped" else ""
+    g = pedesis.Gas(f"""
+dimension = 2
+dynamics = "{dynamics}"
+[box]
+length = 10.0
+shear_rate = 0.2
+[[species]]
+name = "A"
+count = 1
+radius = 0.5
+positions = "point"
+position = [0.0, 4.5]
+velocities = "given"
+velocity = [0.3, 1.0]
+{stepped}""")
+    g.run(time=2.0)
+    assert g.positions[0] == pytest.approx([-1.6, -3.5], abs=1e-9)
+    assert g.velocities[0] == pytest.approx([-0.1, 1.0], abs=1e-9)

@@ -8,7 +8,8 @@ runs shorter versions in under 2 minutes on 2 cores; the full suite takes under 
     python3 -m pedesis.validate --quick --out runs/validate
     pedesis validate --quick            # the same, through the CLI
 """
-from .cases import active, active_models, granular, hard, liquid, sedimentation, transport
+from .cases import (active, active_models, granular, hard, liquid, sedimentation, shear,
+                    transport)
 from .checks import CaseError, CaseResult, Check
 
 # (name, function, runs in quick mode too); in this order in the table
@@ -33,6 +34,8 @@ CASES = (
     ("dilute_transport", transport.dilute_transport, False),
     ("hard_disk_transport", transport.hard_disk_transport, True),
     ("wca_viscosity", transport.wca_viscosity, True),
+    ("hard_sphere_shear", shear.hard_sphere_shear, False),
+    ("granular_usf", shear.granular_usf, False),
 )
 
 __all__ = ["CASES", "CaseError", "CaseResult", "Check"]
