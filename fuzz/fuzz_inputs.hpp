@@ -80,6 +80,10 @@ inline void checkpoint_input(const std::uint8_t* data, std::size_t size) {
         "[[force]]\nname = \"harmonic\"\nk = 10.0\n[[integrator]]\nname = \"brownian\"\n"
         "T = 0.1\ngamma = 1.0\n[run]\nsteps = 40\ndt = 0.01\n[output]\nprogress = false\n"
         "formats = []\n",
+        // event under Lees-Edwards shear with the rescaling thermostat
+        "dimension = 2\nseed = 4\n[box]\nlength = 20.0\nshear_rate = 0.5\n[[species]]\n"
+        "name = \"A\"\ncount = 20\nradius = 0.5\n[event]\nthermostat = \"rescale\"\n"
+        "temperature = 1.0\n[run]\ntime = 2.0\n[output]\nprogress = false\nformats = []\n",
     };
     if (size == 0) return;
     const auto dir = std::filesystem::temp_directory_path() /
@@ -93,7 +97,7 @@ inline void checkpoint_input(const std::uint8_t* data, std::size_t size) {
                          static_cast<std::streamsize>(size - 1));
         file.commit();
     }
-    const RunConfig c = parse_run_config(configs[data[0] % 3], "fuzz.toml", false);
+    const RunConfig c = parse_run_config(configs[data[0] % 4], "fuzz.toml", false);
     RunOptions o;
     o.out_dir = dir / "out"; // never written: the loaders run before the run directory
     o.restart = path;

@@ -461,6 +461,20 @@ inline std::string run_config_text(const std::uint8_t* data, std::size_t size) {
     }
     t += "[initial]\n" + velocity_text + min_distance;
     t += engine_text + output_text;
+    // Lees-Edwards shear of the hard engines (x and y periodic), the event engine's
+    // thermostat: chosen last, so that the choices before keep their meaning for the corpus
+    if (!soft && !wall[0] && !wall[1] && c.sometimes(64)) {
+        const std::string rate = "shear_rate = " + toml_number(c.geometric(0.01, 5.0)) + "\n";
+        const std::size_t boundary = t.find("boundary = [");
+        t.insert(t.find('\n', boundary) + 1, rate);
+        if (dynamics == "event" && c.sometimes(128)) {
+            const std::string thermostat =
+                "thermostat = \"rescale\"\ntemperature = " + toml_number(c.geometric(0.1, 10.0)) +
+                "\nthermostat_interval = " + toml_number(run_length * c.geometric(0.01, 2.0)) +
+                "\n";
+            t.insert(t.find("[event]\n") + 8, thermostat);
+        }
+    }
     return t;
 }
 

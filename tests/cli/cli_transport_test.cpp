@@ -173,10 +173,16 @@ TEST_F(CliTransport, SoftEngineMeasuresWhatItCanAndSaysWhyNotTheRest) {
     EXPECT_FALSE(t.contains("enskog")) << "Enskog is for hard particles";
     // its samples fall on whole steps: 20 steps of 0.004 by default
     EXPECT_NEAR(t.at("interval").get<double>(), 0.08, 1e-12);
-    // nve measures the bulk viscosity too
+    // nve measures the bulk viscosity and the thermal conductivity too (the heat flux's
+    // definition is checked exactly in soft_heat_flux_test; here, that it reaches the
+    // summary: WCA's lambda at n = 0.8, T = 1 is of order 5 in its units)
     write("nve.toml", wca("nve", 10000));
     ASSERT_EQ(run_pedesis("run nve.toml --out nve", dir).exit_code, 0);
-    EXPECT_FALSE(transport("nve").at("bulk_viscosity").at("value").is_null());
+    const auto nve = transport("nve");
+    EXPECT_FALSE(nve.at("bulk_viscosity").at("value").is_null());
+    const double lambda = nve.at("thermal_conductivity").at("value").get<double>();
+    EXPECT_GT(lambda, 1.0);
+    EXPECT_LT(lambda, 20.0);
     // brownian and sheared runs are refused with the way out
     expect_rejected(wca("brownian", 1000), {"table 'transport'", "langevin or nve"});
     std::string sheared = wca("langevin", 1000);

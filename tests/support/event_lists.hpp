@@ -1,10 +1,10 @@
 #pragma once
 // The event engine's neighbour lists, read back from its checkpoint (EventEngine::save,
 // the one public view of them): the list centres, the skin and every particle's list.
-// The reader follows the field order of EventEngine::save for checkpoint version 5 up to
-// the lists (the image counts and flux moments come after them); a new version fails here
-// with the engine's own "unsupported version" message, which means this reader must
-// follow the change.
+// The reader follows the field order of EventEngine::save for checkpoint version 6 up to
+// the lists (the image counts, flux moments and shear state come after them); a new
+// version fails here with the engine's own "unsupported version" message, which means
+// this reader must follow the change.
 #include "pedesis/core/collision_counters.hpp"
 #include "pedesis/event/event_engine.hpp"
 #include "pedesis/io/binary_stream.hpp"
@@ -31,7 +31,7 @@ template <int D> EventLists<D> read_event_lists(const EventEngine<D>& engine) {
     std::stringstream buf;
     engine.save(buf);
     EventLists<D> out;
-    binary::get_header(buf, 0x4b43455344455045ull, 5, D, "event");
+    binary::get_header(buf, 0x4b43455344455045ull, 6, D, "event");
     get(buf, out.species_table);
     get(buf, out.box);
     double now = 0.0, kinetic = 0.0, kinetic_exact = 0.0;

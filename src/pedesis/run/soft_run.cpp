@@ -508,8 +508,11 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             double contact = 0.0; // the potential's core between like particles
             for (const auto& f : evolver_->forces())
                 contact = std::max(contact, f->core(state_, 0, 0));
+            // the heat flux needs energy conservation and pair energies only
+            Vec<D> probe{};
+            const bool heat = c_.dynamics == "nve" && evolver_->heat_flux(particle_energy_, probe);
             book_.transport.emplace(
-                start_transport<D>(c_, state_.p, state_.box, state_.time, c_.dt, contact));
+                start_transport<D>(c_, state_.p, state_.box, state_.time, c_.dt, contact, heat));
         }
         const auto& plan = book_.transport->plan();
         per_sample_ = static_cast<std::uint64_t>(std::max(1.0, std::round(plan.interval / c_.dt)));
@@ -538,7 +541,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             if (!positions_.empty()) positions_[tag] = state_.unwrapped(i);
             if (!velocities_.empty()) velocities_[tag] = state_.p.velocity[i];
         }
-        m.add_flux(vp, positions_, velocities_);
+        Vec<D> heat{};
+        const bool with_heat = m.plan().heat && evolver_->heat_flux(particle_energy_, heat);
+        m.add_flux(vp, with_heat ? &heat : nullptr, positions_, velocities_);
     }
 
     // Lees–Edwards shear runs on one process, on the CPU (gpu_model refuses it), and needs
@@ -791,6 +796,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     double time_start_ = 0.0;
     std::uint64_t per_sample_ = 1, first_sample_ = 0; // [transport]'s steps
     std::vector<Vec<D>> positions_, velocities_;      // a sample's followed particles
+    std::vector<double> particle_energy_;             // the heat flux's scratch
     std::chrono::steady_clock::time_point wall_start_ = std::chrono::steady_clock::now();
     std::optional<std::chrono::steady_clock::time_point> last_progress_;
 };

@@ -16,7 +16,8 @@ namespace pedesis {
 namespace {
 
 constexpr std::uint64_t transport_magic = 0x54524f5053415254ull; // "TRASPORT"
-constexpr std::uint32_t transport_version = 1;
+// 2: add_flux's running heat integral (1 is read with none)
+constexpr std::uint32_t transport_version = 2;
 constexpr std::size_t min_block_samples = 20;
 
 // The shear viscosity's channels: the off-diagonal moments (xy; xy, xz, yz) and the
@@ -135,10 +136,12 @@ void TransportMeasurement<D>::add(const SymTensor& G, const Vec<D>& H,
 
 template <int D>
 void TransportMeasurement<D>::add_flux(const SymTensor& volume_times_pressure,
+                                       const Vec<D>* heat_flux,
                                        const std::vector<Vec<D>>& unwrapped,
                                        const std::vector<Vec<D>>& velocities) {
     for (int c = 0; c < 6; ++c) flux_integral_[c] += volume_times_pressure[c] * plan_.interval;
-    add(flux_integral_, Vec<D>{}, unwrapped, velocities);
+    if (heat_flux) heat_integral_ += *heat_flux * plan_.interval;
+    add(flux_integral_, heat_integral_, unwrapped, velocities);
 }
 
 template <int D> nlohmann::json TransportMeasurement<D>::summary(const Scales& s) const {
@@ -244,6 +247,7 @@ template <int D> void TransportMeasurement<D>::save(std::ostream& out) const {
     binary::put(out, plan_.time_scale);
     binary::put(out, samples_);
     binary::put(out, flux_integral_);
+    binary::put(out, heat_integral_);
     shear_->save(out);
     bulk_->save(out);
     put_optional(out, heat_);
@@ -259,7 +263,7 @@ TransportMeasurement<D> TransportMeasurement<D>::load(std::istream& in, const st
     std::uint8_t heat = 0, vacf = 0;
     binary::get(in, magic);
     binary::get(in, version);
-    if (magic != transport_magic || version != transport_version)
+    if (magic != transport_magic || version < 1 || version > transport_version)
         throw InputError("transport: not a transport measurement of this version");
     TransportMeasurement m;
     binary::get(in, m.plan_.start);
@@ -272,6 +276,7 @@ TransportMeasurement<D> TransportMeasurement<D>::load(std::istream& in, const st
     binary::get(in, m.plan_.time_scale);
     binary::get(in, m.samples_);
     binary::get(in, m.flux_integral_);
+    if (version >= 2) binary::get(in, m.heat_integral_);
     m.plan_.particles = particles;
     m.plan_.heat = heat != 0;
     m.plan_.vacf = vacf != 0;

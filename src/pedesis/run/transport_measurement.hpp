@@ -71,10 +71,11 @@ template <int D> class TransportMeasurement {
              const std::vector<Vec<D>>& velocities);
 
     // The same for an engine that gives the pressure tensor at the sample (times the
-    // volume) instead of its integral: G is its running sum times the interval (the
-    // Einstein form of Green-Kubo's integral), kept here.
-    void add_flux(const SymTensor& volume_times_pressure, const std::vector<Vec<D>>& unwrapped,
-                  const std::vector<Vec<D>>& velocities);
+    // volume) and the heat flux (null: none) instead of their integrals: G and H are their
+    // running sums times the interval (the Einstein form of Green-Kubo's integrals), kept
+    // here.
+    void add_flux(const SymTensor& volume_times_pressure, const Vec<D>* heat_flux,
+                  const std::vector<Vec<D>>& unwrapped, const std::vector<Vec<D>>& velocities);
 
     // summary.json's "transport".
     nlohmann::json summary(const Scales& s) const;
@@ -93,6 +94,7 @@ template <int D> class TransportMeasurement {
     std::unique_ptr<AutoCorrelator> vacf_;
     std::vector<double> scratch_;
     SymTensor flux_integral_{}; // add_flux's running G
+    Vec<D> heat_integral_{};    // and H
 };
 
 // The run's closing lines for summary.json's "transport": each coefficient with its error

@@ -46,7 +46,7 @@ double in_steps(double t, double step) {
 template <int D>
 TransportMeasurement<D> start_transport(const RunConfig& c, const ParticleStore<D>& p,
                                         const Box<D>& box, double start, double step,
-                                        double contact) {
+                                        double contact, bool soft_heat) {
     const TransportConfig& t = c.transport;
     const std::string& where = t.where;
     if (box.any_wall())
@@ -93,7 +93,7 @@ TransportMeasurement<D> start_transport(const RunConfig& c, const ParticleStore<
             std::floor((*end - start) / static_cast<double>(t.blocks) / unit + 1e-9) * unit;
     }
     plan.particles = std::min<std::size_t>(static_cast<std::size_t>(t.particles), p.size());
-    plan.heat = !c.soft();
+    plan.heat = !c.soft() || soft_heat;
     plan.vacf = t.velocity_autocorrelation;
     plan.time_scale = std::isfinite(free) ? free : 0.0;
     return TransportMeasurement<D>(plan, where);
@@ -126,15 +126,16 @@ typename TransportMeasurement<D>::Scales transport_scales(const RunConfig& c, co
         s.bulk_missing = "the Langevin thermostat's temperature fluctuations swamp the pressure's "
                          "(measure the bulk viscosity with nve dynamics)";
     if (c.soft())
-        s.heat_missing = "the soft engine does not measure the heat flux (per-particle energies "
-                         "and pair virials) yet";
+        s.heat_missing = "the heat flux of soft particles is measured with nve dynamics and pair "
+                         "forces only (no walls, fields or active forces), on one process on the "
+                         "CPU";
     return s;
 }
 
 template TransportMeasurement<2> start_transport(const RunConfig&, const ParticleStore<2>&,
-                                                 const Box<2>&, double, double, double);
+                                                 const Box<2>&, double, double, double, bool);
 template TransportMeasurement<3> start_transport(const RunConfig&, const ParticleStore<3>&,
-                                                 const Box<3>&, double, double, double);
+                                                 const Box<3>&, double, double, double, bool);
 template std::vector<std::uint32_t> followed_particles(const ParticleStore<2>&, std::size_t);
 template std::vector<std::uint32_t> followed_particles(const ParticleStore<3>&, std::size_t);
 template TransportMeasurement<2>::Scales transport_scales(const RunConfig&, const Box<2>&,

@@ -15,12 +15,13 @@ namespace pedesis {
 // A fresh measurement from time `start`. step: the engine's time step (0 for the event
 // engine): intervals become whole numbers of steps. contact: the diameter of the Enskog
 // mean free time that sets the fit window (0: the particles' mean diameter; soft
-// particles give their potential's core). InputError (naming [transport]) for a box with
-// walls, a growing run, a run whose length does not fix the blocks.
+// particles give their potential's core). soft_heat: a soft run measures the heat flux
+// (hard particles always do). InputError (naming [transport]) for a box with walls, a
+// growing run, a run whose length does not fix the blocks.
 template <int D>
 TransportMeasurement<D> start_transport(const RunConfig& c, const ParticleStore<D>& p,
                                         const Box<D>& box, double start, double step,
-                                        double contact = 0.0);
+                                        double contact = 0.0, bool soft_heat = false);
 
 // The storage indices of the particles D follows: those with tags below the count, in
 // storage order (the order the measurement keeps).

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace pedesis {
@@ -362,6 +363,30 @@ template <int D> PairTotals Evolver<D>::pair_totals() {
     PairTotals t = pair_totals_within_cutoff();
     add_tail_corrections(t);
     return t;
+}
+
+template <int D> bool Evolver<D>::heat_flux(std::vector<double>& energy, Vec<D>& flux) {
+    if (device_ || domain_) return false;
+    if (!nl_) ensure_list();
+    // (a list of its own when this one is due a rebuild, as pair_totals_within_cutoff)
+    std::optional<NeighborList<D>> fresh;
+    const NeighborList<D>* list = nl_.get();
+    if (nl_->needs_rebuild(s_.p.position)) {
+        fresh.emplace(s_.box, r_list_cut_, skin_);
+        fresh->build(s_.p.position);
+        list = &*fresh;
+    }
+    energy.assign(s_.size(), 0.0);
+    flux = Vec<D>{};
+    for (const auto& f : forces_)
+        if (!f->add_heat_flux(s_, *list, energy, flux)) return false;
+    for (std::size_t i = 0; i < s_.size(); ++i) {
+        const double m = s_.p.mass(i);
+        if (!std::isfinite(m)) continue;
+        const Vec<D>& v = s_.p.velocity[i];
+        flux += v * (0.5 * m * norm2(v) + energy[i]);
+    }
+    return true;
 }
 
 template <int D> void Evolver<D>::add_tail_corrections(PairTotals& t) {

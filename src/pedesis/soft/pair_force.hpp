@@ -111,6 +111,24 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
         }
     }
 
+    bool add_heat_flux(const SoftState<D>& s, const NeighborList<D>& nl,
+                       std::vector<double>& energy, Vec<D>& flux) const override {
+        check_species(s.p.species_table.size());
+        for (std::size_t i = 0; i < s.size(); ++i) {
+            for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it) {
+                const std::uint32_t j = *it;
+                const Vec<D> d = s.box.minimum_image(s.p.position[i] - s.p.position[j]);
+                double f_over_r, u;
+                const Pair& pair = pairs_[index(s.p.species[i], s.p.species[j])];
+                if (!pair.eval(norm2(d), s.p.radius(i) + s.p.radius(j), f_over_r, u)) continue;
+                energy[i] += 0.5 * u;
+                energy[j] += 0.5 * u;
+                flux += d * (0.5 * f_over_r * dot(d, s.p.velocity[i] + s.p.velocity[j]));
+            }
+        }
+        return true;
+    }
+
   private:
     template <bool Uniform> void add_rows(SoftState<D>& s, const NeighborList<D>& nl) const {
         const double rc = range(s);

@@ -39,6 +39,15 @@ template <int D> class ForceTerm {
     virtual std::string start_overlap(const SoftState<D>&) const { return {}; }
     virtual void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const = 0;
     virtual void add_totals(const SoftState<D>&, const NeighborList<D>&, PairTotals&) const {}
+    // The pair part of the heat flux ([transport]'s thermal conductivity): adds each pair's
+    // energy u_ij, half to each particle, to energy[i], and (1/2) r_ij (F_ij . (v_i + v_j))
+    // to `flux` (Irving-Kirkwood; r_ij = r_i - r_j, F_ij the force on i). false for a term
+    // whose energy is not shared by pairs (walls, fields, active forces): the heat flux of
+    // a system with one is not measured.
+    virtual bool add_heat_flux(const SoftState<D>&, const NeighborList<D>&,
+                               std::vector<double>& /*energy*/, Vec<D>& /*flux*/) const {
+        return false;
+    }
     // The energy and virial beyond the cutoff of a homogeneous fluid of counts[s]
     // particles of species s in `volume` (LJ's tail correction, with g(r) = 1 there): 0
     // for a term that asks for none.
