@@ -78,6 +78,11 @@ template <int D> void expect_moment_follows_flux() {
         pair_part = std::max(pair_part, norm(next - kinetic));
         flux = next;
     }
+    // the same pass gives pair_totals' virial tensor, bit for bit
+    SymTensor virial{};
+    ASSERT_TRUE(e.heat_flux(scratch, next, &virial));
+    const SymTensor totals = e.pair_totals().virial_tensor;
+    for (int c = 0; c < 6; ++c) EXPECT_EQ(virial[c], totals[c]) << c;
     const Vec<D> change = helfand_heat_moment(s) - m0;
     EXPECT_GT(norm(change), 1.0);
     EXPECT_GT(pair_part, 1.0);

@@ -526,7 +526,11 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     // tag (the storage order changes with sorting).
     void sample_transport() {
         auto& m = *book_.transport;
-        SymTensor vp = evolver_->pair_totals().virial_tensor;
+        // (with the heat flux, its pass gives the pair virial too)
+        SymTensor vp{};
+        Vec<D> heat{};
+        const bool with_heat = m.plan().heat && evolver_->heat_flux(particle_energy_, heat, &vp);
+        if (!with_heat) vp = evolver_->pair_totals().virial_tensor;
         for (std::size_t i = 0; i < state_.size(); ++i) {
             const double mass = state_.p.mass(i);
             if (std::isfinite(mass))
@@ -541,8 +545,6 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             if (!positions_.empty()) positions_[tag] = state_.unwrapped(i);
             if (!velocities_.empty()) velocities_[tag] = state_.p.velocity[i];
         }
-        Vec<D> heat{};
-        const bool with_heat = m.plan().heat && evolver_->heat_flux(particle_energy_, heat);
         m.add_flux(vp, with_heat ? &heat : nullptr, positions_, velocities_);
     }
 

@@ -365,7 +365,8 @@ template <int D> PairTotals Evolver<D>::pair_totals() {
     return t;
 }
 
-template <int D> bool Evolver<D>::heat_flux(std::vector<double>& energy, Vec<D>& flux) {
+template <int D>
+bool Evolver<D>::heat_flux(std::vector<double>& energy, Vec<D>& flux, SymTensor* virial_tensor) {
     if (device_ || domain_) return false;
     if (!nl_) ensure_list();
     // (a list of its own when this one is due a rebuild, as pair_totals_within_cutoff)
@@ -378,8 +379,13 @@ template <int D> bool Evolver<D>::heat_flux(std::vector<double>& energy, Vec<D>&
     }
     energy.assign(s_.size(), 0.0);
     flux = Vec<D>{};
+    PairTotals t; // (only its virial tensor, summed as pair_totals sums it)
     for (const auto& f : forces_)
-        if (!f->add_heat_flux(s_, *list, energy, flux)) return false;
+        if (!f->add_heat_flux(s_, *list, energy, flux, t.virial_tensor)) return false;
+    if (virial_tensor) {
+        add_tail_corrections(t);
+        *virial_tensor = t.virial_tensor;
+    }
     for (std::size_t i = 0; i < s_.size(); ++i) {
         const double m = s_.p.mass(i);
         if (!std::isfinite(m)) continue;

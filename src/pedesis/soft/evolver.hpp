@@ -99,8 +99,9 @@ template <int D> class Evolver {
     // The heat flux J = Σ_i v_i e_i + (1/2) Σ_pairs r_ij (F_ij . (v_i + v_j)), e_i the
     // particle's kinetic energy and half its pair energies, into `flux` (`energy` is
     // scratch): false when a term has no pair energy (ForceTerm::add_heat_flux), under a
-    // domain decomposition or on the GPU. Serial, on request, as pair_totals.
-    bool heat_flux(std::vector<double>& energy, Vec<D>& flux);
+    // domain decomposition or on the GPU. Serial, on request, as pair_totals; with
+    // `virial_tensor`, pair_totals().virial_tensor from the same pass.
+    bool heat_flux(std::vector<double>& energy, Vec<D>& flux, SymTensor* virial_tensor = nullptr);
     const NeighborList<D>& neighbor_list();
     std::uint64_t list_builds() const { return builds_; }
     double list_cutoff() const { return r_list_cut_; }

@@ -112,7 +112,8 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
     }
 
     bool add_heat_flux(const SoftState<D>& s, const NeighborList<D>& nl,
-                       std::vector<double>& energy, Vec<D>& flux) const override {
+                       std::vector<double>& energy, Vec<D>& flux,
+                       SymTensor& virial_tensor) const override {
         check_species(s.p.species_table.size());
         for (std::size_t i = 0; i < s.size(); ++i) {
             for (const std::uint32_t* it = nl.begin(i); it != nl.end(i); ++it) {
@@ -124,6 +125,7 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
                 energy[i] += 0.5 * u;
                 energy[j] += 0.5 * u;
                 flux += d * (0.5 * f_over_r * dot(d, s.p.velocity[i] + s.p.velocity[j]));
+                add_sym_outer<D>(virial_tensor, d, d, f_over_r);
             }
         }
         return true;

@@ -41,11 +41,13 @@ template <int D> class ForceTerm {
     virtual void add_totals(const SoftState<D>&, const NeighborList<D>&, PairTotals&) const {}
     // The pair part of the heat flux ([transport]'s thermal conductivity): adds each pair's
     // energy u_ij, half to each particle, to energy[i], and (1/2) r_ij (F_ij . (v_i + v_j))
-    // to `flux` (Irving-Kirkwood; r_ij = r_i - r_j, F_ij the force on i). false for a term
-    // whose energy is not shared by pairs (walls, fields, active forces): the heat flux of
-    // a system with one is not measured.
+    // to `flux` (Irving-Kirkwood; r_ij = r_i - r_j, F_ij the force on i), and in the same
+    // pass what add_totals adds to the virial tensor. false for a term whose energy is not
+    // shared by pairs (walls, fields, active forces): the heat flux of a system with one is
+    // not measured.
     virtual bool add_heat_flux(const SoftState<D>&, const NeighborList<D>&,
-                               std::vector<double>& /*energy*/, Vec<D>& /*flux*/) const {
+                               std::vector<double>& /*energy*/, Vec<D>& /*flux*/,
+                               SymTensor& /*virial_tensor*/) const {
         return false;
     }
     // The energy and virial beyond the cutoff of a homogeneous fluid of counts[s]
