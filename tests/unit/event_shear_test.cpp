@@ -5,6 +5,8 @@
 // the energy the flow feeds in, -rate V ∫ P_xy dt, is exactly the change of the peculiar
 // kinetic energy plus what collisions and the thermostat took; a checkpoint continues
 // bit for bit.
+#include "support/sheared_gas.hpp"
+
 #include "pedesis/core/error.hpp"
 #include "pedesis/event/event_engine.hpp"
 
@@ -21,75 +23,6 @@ using namespace pedesis;
 
 namespace {
 
-template <int D> Box<D> sheared_box(double length, double rate) {
-    Vec<D> L{};
-    std::array<bool, D> periodic{};
-    for (int a = 0; a < D; ++a) {
-        L[a] = length;
-        periodic[a] = true;
-    }
-    Box<D> box(L, periodic);
-    box.set_shear_rate(rate);
-    return box;
-}
-
-// n^D particles of radius 0.5 on a square (cubic) lattice of the given spacing, Gaussian
-// velocities at T = 1 with zero total momentum: exact lattice positions, some on the
-// cell faces of the engine's grids.
-template <int D> ParticleStore<D> lattice_gas(int n, double spacing, unsigned seed) {
-    ParticleStore<D> p;
-    p.species_table = {Species{"A", 0.5, 1.0}};
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> gauss;
-    const double L = spacing * n;
-    const int total = D == 2 ? n * n : n * n * n;
-    Vec<D> sum{};
-    for (int k = 0; k < total; ++k) {
-        Vec<D> r{}, v{};
-        int rest = k;
-        for (int a = 0; a < D; ++a) {
-            r[a] = spacing * (rest % n) - 0.5 * L;
-            rest /= n;
-            v[a] = gauss(rng);
-        }
-        p.position.push_back(r);
-        p.velocity.push_back(v);
-        sum += v;
-        p.tag.push_back(static_cast<std::uint32_t>(k));
-        p.species.push_back(0);
-    }
-    for (auto& v : p.velocity) v -= sum * (1.0 / total);
-    return p;
-}
-
-template <int D> ParticleStore<D> two_particles(const Vec<D>& a, const Vec<D>& b) {
-    ParticleStore<D> p;
-    p.species_table = {Species{"A", 0.5, 1.0}};
-    p.position = {a, b};
-    p.velocity = {Vec<D>{}, Vec<D>{}};
-    p.tag = {0, 1};
-    p.species = {0, 0};
-    return p;
-}
-
-// Every pair, every image: the closest approach at the snapshot's instant.
-template <int D> void expect_no_overlap(const ParticleStore<D>& s, const Box<D>& box, double t) {
-    for (std::size_t i = 0; i < s.size(); ++i)
-        for (std::size_t j = i + 1; j < s.size(); ++j) {
-            double closest = INFINITY;
-            for (int ky = -1; ky <= 1; ++ky)
-                for (int kx = -2; kx <= 2; ++kx) {
-                    Vec<D> d = s.position[i] - s.position[j];
-                    d[1] += ky * box.length(1);
-                    d[0] += ky * box.shear_offset() + kx * box.length(0);
-                    if (D == 3)
-                        d[D - 1] -= box.length(D - 1) * std::round(d[D - 1] / box.length(D - 1));
-                    closest = std::min(closest, norm(d));
-                }
-            ASSERT_GE(closest, 1.0 - 1e-9) << "particles " << i << " and " << j << " at t = " << t;
-        }
-}
-
 TEST(EventShear, AFreeParticleCrossingTheSlidingFaceLandsWhereTheOffsetPutsIt) {
     // x = 0, y = 4.5 in a 10 x 10 box at rate 0.2; peculiar velocity (0.3, 1): the
     // laboratory velocity is (0.3 + 0.2 * 4.5, 1) = (1.2, 1). At t = 2 the flight is at
@@ -102,7 +35,7 @@ TEST(EventShear, AFreeParticleCrossingTheSlidingFaceLandsWhereTheOffsetPutsIt) {
     p.velocity = {Vec<2>{{0.3, 1.0}}};
     p.tag = {0};
     p.species = {0};
-    EventEngine<2> e(p, sheared_box<2>(10.0, 0.2), EventParams{});
+    EventEngine<2> e(p, test::sheared_box<2>(10.0, 0.2), EventParams{});
     StopLimits limits;
     limits.time = 2.0;
     ASSERT_EQ(e.run(limits), StopReason::time);
@@ -120,16 +53,16 @@ TEST(EventShear, TwoParticlesMeetAcrossTheFaceWhenTheirImagesLineUp) {
     // height 5.45, drifts along x relative to A at rate * 0.9 = 0.09 from -3; contact (a
     // distance 1 at a height difference 0.9) comes when it is sqrt(0.19) short of A: at
     // t = (3 - sqrt(0.19)) / 0.09 = 28.49..., after the offset has wrapped several times.
-    EventEngine<2> e(two_particles<2>(Vec<2>{{0.0, 4.55}}, Vec<2>{{-3.0, -4.55}}),
-                     sheared_box<2>(10.0, 0.1), EventParams{});
+    EventEngine<2> e(test::particle_pair<2>(Vec<2>{{0.0, 4.55}}, Vec<2>{{-3.0, -4.55}}),
+                     test::sheared_box<2>(10.0, 0.1), EventParams{});
     StopLimits limits;
     limits.pair_collisions = 1;
     limits.time = 100.0;
     ASSERT_EQ(e.run(limits), StopReason::collisions);
     EXPECT_NEAR(e.time(), (3.0 - std::sqrt(0.19)) / 0.09, 1e-9);
     // the same in 3D, across the face below (B above A's image): the roles swapped
-    EventEngine<3> f(two_particles<3>(Vec<3>{{-3.0, -4.55, 0.2}}, Vec<3>{{0.0, 4.55, 0.2}}),
-                     sheared_box<3>(10.0, 0.1), EventParams{});
+    EventEngine<3> f(test::particle_pair<3>(Vec<3>{{-3.0, -4.55, 0.2}}, Vec<3>{{0.0, 4.55, 0.2}}),
+                     test::sheared_box<3>(10.0, 0.1), EventParams{});
     ASSERT_EQ(f.run(limits), StopReason::collisions);
     EXPECT_NEAR(f.time(), (3.0 - std::sqrt(0.19)) / 0.09, 1e-9);
 }
@@ -142,11 +75,11 @@ TEST(EventShear, APairThatOnlyTheSlideBringsTogetherIsListedAheadOfThePass) {
     // height difference 0.5) comes at t = 1.9 - sqrt(0.75) = 1.034, before the first pass:
     // B's image, 1.9 away along x at the start, is listed only if the scans across the
     // face reach the slide's allowance beyond the lists' reach.
-    ParticleStore<2> p = two_particles<2>(Vec<2>{{0.0, 4.75}}, Vec<2>{{-1.9, -4.75}});
+    ParticleStore<2> p = test::particle_pair<2>(Vec<2>{{0.0, 4.75}}, Vec<2>{{-1.9, -4.75}});
     p.velocity = {Vec<2>{{-0.475, 0.0}}, Vec<2>{{0.475, 0.0}}}; // peculiar: lab velocity 0
     EventParams params;
     params.skin = 0.1;
-    EventEngine<2> e(p, sheared_box<2>(10.0, 0.1), params);
+    EventEngine<2> e(p, test::sheared_box<2>(10.0, 0.1), params);
     StopLimits limits;
     limits.pair_collisions = 1;
     limits.time = 1.5;
@@ -167,14 +100,17 @@ void expect_energy_balance(double rate, double restitution, double thermostat, i
         params.thermostat_temperature = thermostat;
         params.thermostat_interval = 0.37;
     }
-    const Box<D> box = sheared_box<D>(spacing * n, rate);
-    EventEngine<D> e(lattice_gas<D>(n, spacing, 7), box, params);
+    const Box<D> box = test::sheared_box<D>(spacing * n, rate);
+    EventEngine<D> e(test::sheared_lattice_gas<D>(n, spacing, 7), box, params);
     const double k0 = e.kinetic_energy();
     StopLimits limits;
     for (int step = 1; step <= 40; ++step) {
         limits.time = t_end * step / 40.0;
         ASSERT_EQ(e.run(limits), StopReason::time);
-        if (check_pairs) expect_no_overlap<D>(e.snapshot(), e.box(), e.time());
+        if (check_pairs) {
+            ASSERT_GE(test::closest_approach(e.snapshot(), e.box()), 1.0 - 1e-9)
+                << "t = " << e.time();
+        }
     }
     const double g_xy = e.flux_moments().kinetic_integral[3] + e.counters().virial[3];
     const double balance = k0 - rate * g_xy - e.counters().energy_lost -
@@ -210,9 +146,9 @@ template <int D> void expect_same_trajectory_for_two_skins(int n, double spacing
     const double room = 0.5 * spacing * n - 1.0; // between the contact and half the box
     thin.skin = 0.08 * room;
     thick.skin = 0.38 * room; // near choose_skin's cap, 0.4 of the room
-    const Box<D> box = sheared_box<D>(spacing * n, rate);
-    EventEngine<D> a(lattice_gas<D>(n, spacing, 9), box, thin);
-    EventEngine<D> b(lattice_gas<D>(n, spacing, 9), box, thick);
+    const Box<D> box = test::sheared_box<D>(spacing * n, rate);
+    EventEngine<D> a(test::sheared_lattice_gas<D>(n, spacing, 9), box, thin);
+    EventEngine<D> b(test::sheared_lattice_gas<D>(n, spacing, 9), box, thick);
     ASSERT_LT(a.skin(), 0.5 * b.skin());
     StopLimits limits;
     limits.time = 0.8;
@@ -240,7 +176,8 @@ TEST(EventShear, TheThermostatHoldsThePeculiarTemperature) {
     EventParams params;
     params.thermostat_temperature = 2.0;
     params.thermostat_interval = 0.25;
-    EventEngine<3> e(lattice_gas<3>(6, 1.4, 3), sheared_box<3>(8.4, 0.5), params);
+    EventEngine<3> e(test::sheared_lattice_gas<3>(6, 1.4, 3), test::sheared_box<3>(8.4, 0.5),
+                     params);
     StopLimits limits;
     limits.time = 10.0;
     ASSERT_EQ(e.run(limits), StopReason::time);
@@ -259,7 +196,8 @@ TEST(EventShear, ACheckpointContinuesBitForBit) {
     EventParams params;
     params.thermostat_temperature = 1.0;
     params.thermostat_interval = 0.3;
-    EventEngine<3> a(lattice_gas<3>(6, 1.3, 5), sheared_box<3>(7.8, 0.4), params);
+    EventEngine<3> a(test::sheared_lattice_gas<3>(6, 1.3, 5), test::sheared_box<3>(7.8, 0.4),
+                     params);
     StopLimits limits;
     limits.time = 3.1;
     a.run(limits);
@@ -284,14 +222,16 @@ TEST(EventShear, ACheckpointContinuesBitForBit) {
 TEST(EventShear, RefusesGrowthAndWallsAcrossTheFlow) {
     EventParams growing;
     growing.growth_rate = 0.1;
-    EXPECT_THROW(EventEngine<2>(lattice_gas<2>(8, 1.5, 1), sheared_box<2>(12.0, 0.1), growing),
+    EXPECT_THROW(EventEngine<2>(test::sheared_lattice_gas<2>(8, 1.5, 1),
+                                test::sheared_box<2>(12.0, 0.1), growing),
                  InputError);
     Box<2> walled(Vec<2>{{12.0, 12.0}}, {true, false});
     EXPECT_THROW(walled.set_shear_rate(0.1), InputError);
     EventParams cold;
     cold.thermostat_temperature = 1.0;
     cold.thermostat_interval = 0.0;
-    EXPECT_THROW(EventEngine<2>(lattice_gas<2>(8, 1.5, 1), sheared_box<2>(12.0, 0.1), cold),
+    EXPECT_THROW(EventEngine<2>(test::sheared_lattice_gas<2>(8, 1.5, 1),
+                                test::sheared_box<2>(12.0, 0.1), cold),
                  InputError);
 }
 

@@ -7,6 +7,8 @@
 // included); no pair overlaps at the end of a step in dense, strongly sheared gases (a
 // brute-force scan of every pair and image); a checkpoint continues bit for bit; a rate
 // whose flow alone outruns max_move is refused.
+#include "support/sheared_gas.hpp"
+
 #include "pedesis/core/error.hpp"
 #include "pedesis/stepped/stepped_engine.hpp"
 
@@ -26,83 +28,10 @@ using namespace pedesis;
 
 namespace {
 
-// A cube (square) of side `length`, periodic except z when `wall_z`, sheared at `rate`.
-template <int D> Box<D> sheared_box(double length, double rate, bool wall_z = false) {
-    Vec<D> L{};
-    std::array<bool, D> periodic{};
-    for (int a = 0; a < D; ++a) {
-        L[a] = length;
-        periodic[a] = !(wall_z && a == 2);
-    }
-    Box<D> box(L, periodic);
-    box.set_shear_rate(rate);
-    return box;
-}
-
 SteppedParams params_with(double dt) {
     SteppedParams p;
     p.dt = dt;
     return p;
-}
-
-// n^D disks (spheres) of radius 0.5 on a lattice of the given spacing (on the box's faces,
-// or half a spacing off them along z between walls), Gaussian velocities at T = 1 with no
-// total momentum.
-template <int D> ParticleStore<D> lattice_gas(int n, double spacing, bool wall_z, unsigned seed) {
-    ParticleStore<D> p;
-    p.species_table = {Species{"A", 0.5, 1.0}};
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> gauss;
-    const int total = D == 2 ? n * n : n * n * n;
-    Vec<D> sum{};
-    for (int k = 0; k < total; ++k) {
-        Vec<D> r{}, v{};
-        int rest = k;
-        for (int a = 0; a < D; ++a) {
-            const double lift = wall_z && a == 2 ? 0.5 : 0.0;
-            r[a] = spacing * (rest % n + lift) - 0.5 * spacing * n;
-            rest /= n;
-            v[a] = gauss(rng);
-        }
-        p.position.push_back(r);
-        p.velocity.push_back(v);
-        sum += v;
-        p.tag.push_back(static_cast<std::uint32_t>(k));
-        p.species.push_back(0);
-    }
-    for (auto& v : p.velocity) v -= sum * (1.0 / total);
-    return p;
-}
-
-// Two particles of radius 0.5 at rest in the flow (no peculiar velocity).
-template <int D> ParticleStore<D> pair_at(const Vec<D>& a, const Vec<D>& b) {
-    ParticleStore<D> p;
-    p.species_table = {Species{"A", 0.5, 1.0}};
-    p.position = {a, b};
-    p.velocity = {Vec<D>{}, Vec<D>{}};
-    p.tag = {0, 1};
-    p.species = {0, 0};
-    return p;
-}
-
-// The closest approach of every pair over the images across the sliding y faces and the
-// periodic x (and z) faces, at the engine's time: each must be at least a diameter.
-template <int D> double closest_approach(const SteppedEngine<D>& e) {
-    const ParticleStore<D>& s = e.particles();
-    const Box<D>& box = e.box();
-    double closest = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < s.size(); ++i)
-        for (std::size_t j = i + 1; j < s.size(); ++j)
-            for (int ky = -1; ky <= 1; ++ky)
-                for (int kx = -2; kx <= 2; ++kx) {
-                    Vec<D> d = s.position[i] - s.position[j];
-                    d[1] += ky * box.length(1);
-                    d[0] += ky * box.shear_offset() + kx * box.length(0);
-                    if (D == 3 && box.periodic(D - 1))
-                        d[D - 1] -= box.length(D - 1) * std::round(d[D - 1] / box.length(D - 1));
-                    closest = std::min(closest, norm(d));
-                }
-    return closest;
 }
 
 TEST(SteppedShear, AFreeParticleCrossingTheSlidingFaceLandsWhereTheOffsetPutsIt) {
@@ -117,7 +46,7 @@ TEST(SteppedShear, AFreeParticleCrossingTheSlidingFaceLandsWhereTheOffsetPutsIt)
     p.velocity = {Vec<2>{{0.3, 1.0}}};
     p.tag = {0};
     p.species = {0};
-    SteppedEngine<2> e(p, sheared_box<2>(10.0, 0.2), params_with(0.01));
+    SteppedEngine<2> e(p, test::sheared_box<2>(10.0, 0.2), params_with(0.01));
     for (int k = 0; k < 200; ++k) e.step();
     ASSERT_DOUBLE_EQ(e.time(), 2.0);
     const ParticleStore<2>& s = e.particles();
@@ -140,7 +69,8 @@ TEST(SteppedShear, AFreeParticleCrossingTheSlidingFaceLandsWhereTheOffsetPutsIt)
 // the flow's +-0.455, whatever the step, if the rewind found the exact contact.
 template <int D> void expect_meeting_across_the_face(const Vec<D>& a, const Vec<D>& b, int sign) {
     const double dt = 0.05, t_star = (3.0 - std::sqrt(0.19)) / 0.09, s = std::sqrt(0.19);
-    SteppedEngine<D> e(pair_at<D>(a, b), sheared_box<D>(10.0, 0.1), params_with(dt));
+    SteppedEngine<D> e(test::particle_pair<D>(a, b), test::sheared_box<D>(10.0, 0.1),
+                       params_with(dt));
     while (e.counters().pair_collisions == 0 && e.time() < 40.0) e.step();
     ASSERT_EQ(e.counters().pair_collisions, 1u);
     // the step that holds t*
@@ -167,13 +97,14 @@ TEST(SteppedShear, TwoParticlesMeetAcrossTheFaceWhenTheirImagesLineUp) {
 // rounding, however the steps cut the flights. At each step's end no pair overlaps.
 template <int D>
 void expect_energy_balance(double rate, int n, double spacing, bool wall_z, double dt, int steps) {
-    SteppedEngine<D> e(lattice_gas<D>(n, spacing, wall_z, 7),
-                       sheared_box<D>(spacing * n, rate, wall_z), params_with(dt));
+    SteppedEngine<D> e(test::sheared_lattice_gas<D>(n, spacing, 7, wall_z),
+                       test::sheared_box<D>(spacing * n, rate, wall_z), params_with(dt));
     const double k0 = e.kinetic_energy();
     double closest = std::numeric_limits<double>::infinity();
     for (int k = 0; k < steps; ++k) {
         e.step();
-        if (k % 10 == 9) closest = std::min(closest, closest_approach(e));
+        if (k % 10 == 9)
+            closest = std::min(closest, test::closest_approach(e.particles(), e.box()));
     }
     const FluxMoments<D> m = e.flux_moments();
     const double g_xy = m.kinetic_integral[3] + e.counters().virial[3];
@@ -205,7 +136,8 @@ TEST(SteppedShear, TheFlowFeedsInExactlyThePowerOfTheShearStress3DWithWallsOnZ) 
 
 TEST(SteppedShear, ACheckpointContinuesBitForBit) {
     const SteppedParams params = params_with(0.005);
-    SteppedEngine<3> a(lattice_gas<3>(6, 1.3, false, 5), sheared_box<3>(7.8, 0.4), params);
+    SteppedEngine<3> a(test::sheared_lattice_gas<3>(6, 1.3, 5, false),
+                       test::sheared_box<3>(7.8, 0.4), params);
     for (int k = 0; k < 300; ++k) a.step();
     std::ostringstream out;
     a.save(out);
@@ -232,8 +164,8 @@ TEST(SteppedShear, RefusesARateWhoseFlowAloneOutrunsMaxMove) {
     // the flow moves touching particles (1 apart in y) 5 * 1 * 0.06 = 0.3 a step, 0.6
     // radii, more than max_move = 0.5
     try {
-        SteppedEngine<2> e(lattice_gas<2>(8, 1.5, false, 1), sheared_box<2>(12.0, 5.0),
-                           params_with(0.06));
+        SteppedEngine<2> e(test::sheared_lattice_gas<2>(8, 1.5, 1, false),
+                           test::sheared_box<2>(12.0, 5.0), params_with(0.06));
         FAIL() << "accepted";
     } catch (const InputError& err) {
         const std::string m = err.what();
@@ -241,8 +173,8 @@ TEST(SteppedShear, RefusesARateWhoseFlowAloneOutrunsMaxMove) {
         EXPECT_NE(m.find("[stepped] dt = 0.06"), std::string::npos) << m;
     }
     // at dt = 0.04, 0.4 radii: accepted
-    EXPECT_NO_THROW(SteppedEngine<2>(lattice_gas<2>(8, 1.5, false, 1), sheared_box<2>(12.0, 5.0),
-                                     params_with(0.04)));
+    EXPECT_NO_THROW(SteppedEngine<2>(test::sheared_lattice_gas<2>(8, 1.5, 1, false),
+                                     test::sheared_box<2>(12.0, 5.0), params_with(0.04)));
 }
 
 } // namespace
