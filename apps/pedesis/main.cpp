@@ -24,12 +24,16 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
 #include <string>
 
 int main(int argc, char** argv) {
+    // Past a file-size limit (ulimit -f) a write fails with EFBIG, and the run stops with
+    // a message naming the file, its checkpoint intact, instead of dying by SIGXFSZ.
+    std::signal(SIGXFSZ, SIG_IGN);
     CLI::App app{"pedesis: particle dynamics of gases and active matter"};
     pedesis::SimdLevel kernels;
     try { // PEDESIS_SIMD is checked once, before anything runs

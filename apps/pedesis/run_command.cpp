@@ -5,7 +5,10 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/core/interrupt.hpp"
 #include "pedesis/observe/quantities.hpp"
+#include "pedesis/run/resume.hpp"
 #include "pedesis/run/run.hpp"
+#include "pedesis/run/run_directory.hpp"
+#include "pedesis/run/run_directory_lock.hpp"
 #include "pedesis/run/steering.hpp"
 #include "pedesis/setup/config_overrides.hpp"
 #include "pedesis/setup/run_config.hpp"
@@ -33,6 +36,7 @@ struct RunArgs {
     std::string config;
     std::string out;
     std::string restart;
+    bool resume = false;
     bool list_quantities = false;
     int threads = 0;    // 0: choose (thread_choice.hpp)
     std::string device; // empty: the config's [run] device
@@ -121,8 +125,12 @@ void add_run_command(CLI::App& app) {
                     "Where a soft-engine run steps: cpu or gpu (default: the config's [run] "
                     "device, else cpu; docs/gpu.md)")
         ->check(CLI::IsMember({"cpu", "gpu"}));
-    cmd->add_option("--restart", a->restart,
-                    "Continue exactly from a checkpoint.bin of an earlier run");
+    auto* restart = cmd->add_option("--restart", a->restart,
+                                    "Continue exactly from a checkpoint.bin of an earlier run");
+    cmd->add_flag("--resume", a->resume,
+                  "Continue the unfinished run in --out in place from its newest checkpoint "
+                  "(start it if there is none; nothing to do if it finished)")
+        ->excludes(restart);
     cmd->add_flag("--view", a->view,
                   "Serve the run in the browser while it goes, and after it until Ctrl-C "
                   "(pedesis view; docs/view.md)");
@@ -161,6 +169,12 @@ void add_run_command(CLI::App& app) {
                         : std::filesystem::path(a->out);
         if (!a->restart.empty()) o.restart = a->restart;
         if (!a->device.empty()) o.device = a->device;
+        if (a->resume && (a->view || !a->steering.empty()))
+            throw InputError("--resume continues runs without steering; --view and --steering "
+                             "cannot be given with it");
+        // one writer per run directory (process 0's lock speaks for an MPI run)
+        std::unique_ptr<RunDirectoryLock> lock;
+        on_process_zero(comm.get(), [&] { lock = std::make_unique<RunDirectoryLock>(o.out_dir); });
         // only process 0 talks; every process of an MPI run takes one thread unless told
         // otherwise (P processes of idle-core threads each would oversubscribe the cores)
         std::ostringstream unheard;
@@ -171,6 +185,16 @@ void add_run_command(CLI::App& app) {
         else if (comm && !std::getenv("OMP_NUM_THREADS"))
             threads = 1;
         choose_threads(threads, console);
+        if (a->resume) {
+            const ResumePlan plan =
+                plan_resume(o.out_dir, run_directory_config(o.config_path, o.config_text));
+            console << "pedesis: " << plan.why << "\n" << std::flush;
+            if (plan.kind == ResumePlan::Kind::finished) return;
+            if (plan.kind == ResumePlan::Kind::resume) {
+                o.restart = plan.checkpoint;
+                o.resume_marks = plan.marks;
+            }
+        }
         // a signal during set-up ends the process at once (nothing there to close)
         InterruptGuard guard(OutsideCleanStops::end_process);
         const std::unique_ptr<Run> run = [&] {
@@ -223,15 +247,24 @@ void add_run_command(CLI::App& app) {
             // could hold up): pause() returns only to a handler, and ours does not return.
             for (;;) ::pause();
         }
-        if (guard.signal() != 0) {
+        if (const int sig = guard.signal(); sig != 0) {
+            const bool checkpoint_signal = sig == SIGTERM || sig == SIGUSR1;
             console << fmt::format(
                 "pedesis: interrupted by signal {} ({}) at step {} (t = {:.6g}); the run "
-                "directory is complete up to here: continue with --restart {}\n",
-                guard.signal(), strsignal(guard.signal()), run->step(), run->time(),
-                (o.out_dir / "checkpoint.bin").string());
+                "directory is complete up to here: continue in place with --resume (pedesis run "
+                "{} --out {} --resume), or elsewhere with --restart {}{}\n",
+                sig, strsignal(sig), run->step(), run->time(), a->config, o.out_dir.string(),
+                (o.out_dir / "checkpoint.bin").string(),
+                checkpoint_signal
+                    ? fmt::format("; exit code {}: checkpointed, resume me", exit_checkpointed)
+                    : "");
             console.flush();
             live.reset();
             desk.reset(); // its record, under its final name, before the signal ends us
+            lock.reset();
+            // a scheduler's signal asks for a checkpoint and an end a job script can test;
+            // Ctrl-C and a hang-up end the process by the signal, as a shell expects
+            if (checkpoint_signal) throw SilentExit{exit_checkpointed};
             guard.reraise();
         }
     });

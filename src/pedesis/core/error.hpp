@@ -20,5 +20,8 @@ class RunError : public std::runtime_error {
 
 inline constexpr int exit_input_error = 2;
 inline constexpr int exit_run_error = 3;
+// A run stopped by SIGTERM or SIGUSR1 (a scheduler's "time is up"), with its checkpoint
+// and every output complete: resume it (EX_TEMPFAIL of sysexits.h, "try again later").
+inline constexpr int exit_checkpointed = 75;
 
 } // namespace pedesis

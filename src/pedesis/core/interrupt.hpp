@@ -16,6 +16,11 @@ namespace pedesis {
 // The signal received while an InterruptGuard is in place, 0 if none (and 0 again once
 // the guard is gone). Cheap enough to call once per step.
 int interrupt_signal();
+
+// A file that a signal ending the process at once removes first (the run directory's
+// lock, so that a run killed in set-up leaves nothing behind), and a directory it then
+// removes if empty (one the lock made); null: none.
+void remove_on_abrupt_end(const char* path, const char* empty_dir);
 inline bool interrupt_requested() {
     return interrupt_signal() != 0;
 }
@@ -28,7 +33,7 @@ enum class OutsideCleanStops {
 
 class InterruptGuard {
   public:
-    // catches SIGINT, SIGTERM and SIGHUP
+    // catches SIGINT, SIGTERM, SIGHUP and SIGUSR1 (a scheduler's "checkpoint now")
     explicit InterruptGuard(OutsideCleanStops outside = OutsideCleanStops::remember);
     ~InterruptGuard(); // puts the earlier handlers back
     InterruptGuard(const InterruptGuard&) = delete;
@@ -42,14 +47,15 @@ class InterruptGuard {
 
   private:
     struct sigaction old_int_ {
-    }, old_term_{}, old_hup_{};
+    }, old_term_{}, old_hup_{}, old_usr1_{};
     bool restored_ = false;
     void restore();
 };
 
 // While one is alive, a caught signal is remembered for a clean stop at the next step
-// boundary, whatever the guard does outside windows. A second signal still ends the
-// process at once: the way out of a close that takes too long.
+// boundary, whatever the guard does outside windows. A second SIGINT still ends the
+// process at once: the way out of a close that takes too long; other repeated signals
+// are ignored (interrupt.cpp).
 class CleanStopWindow {
   public:
     CleanStopWindow();

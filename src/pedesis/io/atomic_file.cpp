@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <exception>
+#include <fcntl.h>
 #include <stdexcept>
 #include <system_error>
 #include <unistd.h>
@@ -89,6 +90,16 @@ AtomicAppendFile::AtomicAppendFile(fs::path path) : path_(std::move(path)), part
     if (ec) throw InputError(path_.string() + ": cannot remove the old file: " + ec.message());
 }
 
+AtomicAppendFile::AtomicAppendFile(fs::path path, std::uintmax_t keep)
+    : path_(std::move(path)), part_(path_) {
+    part_ += ".part";
+    cut_back_part_file(path_, part_, keep);
+    errno = 0;
+    out_.open(part_, std::ios::out | std::ios::app | std::ios::binary);
+    if (!out_) throw InputError(part_.string() + ": cannot open for writing" + errno_text(errno));
+    bytes_ = keep;
+}
+
 AtomicAppendFile::~AtomicAppendFile() = default; // the ofstream closes itself; .part stays
 
 void AtomicAppendFile::append(const std::string& frame) {
@@ -97,6 +108,11 @@ void AtomicAppendFile::append(const std::string& frame) {
     out_.write(frame.data(), static_cast<std::streamsize>(frame.size()));
     out_.flush();
     if (!out_) throw InputError(part_.string() + ": write error" + errno_text(errno));
+    bytes_ += frame.size();
+}
+
+void AtomicAppendFile::sync() {
+    if (!committed_) sync_file(part_);
 }
 
 void AtomicAppendFile::commit() {
@@ -106,6 +122,38 @@ void AtomicAppendFile::commit() {
     if (out_.fail()) throw InputError(part_.string() + ": write error" + errno_text(errno));
     publish_part_file(part_, path_);
     committed_ = true;
+}
+
+void cut_back_part_file(const fs::path& path, const fs::path& part, std::uintmax_t keep) {
+    std::error_code ec;
+    if (!fs::exists(part, ec) && fs::exists(path, ec)) {
+        fs::rename(path, part, ec);
+        if (ec)
+            throw InputError(path.string() + ": cannot rename it back to " + part.string() +
+                             " to continue it: " + ec.message());
+    }
+    const std::uintmax_t size = fs::file_size(part, ec);
+    if (ec)
+        throw InputError(part.string() + ": missing, so the run cannot continue in place (" +
+                         ec.message() + ")");
+    if (size < keep)
+        throw InputError(part.string() + ": " + std::to_string(size) + " bytes, shorter than the " +
+                         std::to_string(keep) +
+                         " the checkpoint recorded: not the file the checkpoint knew");
+    fs::resize_file(part, keep, ec);
+    if (ec) throw InputError(part.string() + ": cannot cut it back: " + ec.message());
+}
+
+void sync_file(const fs::path& file) {
+    errno = 0;
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    int err = fd < 0 ? errno : 0;
+    if (fd >= 0) {
+        if (::fsync(fd) != 0) err = errno;
+        ::close(fd);
+    }
+    if (err != 0)
+        throw InputError(file.string() + ": cannot write it to the disk" + errno_text(err));
 }
 
 std::string errno_text(int err) {

@@ -24,6 +24,14 @@ inline constexpr std::array<const char*, 5> frame_formats = {"gsd", "vtp", "xyz"
 // "gsd", "vtp", ...: the list for messages.
 std::string frame_format_list();
 
+// Where the frames stood at a checkpoint: the frame count, the XYZ file's length and
+// the GSD file's mark (for the formats the run writes).
+struct FrameMarks {
+    std::uint64_t frames = 0;
+    std::uintmax_t xyz_bytes = 0;
+    GsdMark gsd;
+};
+
 template <int D> class FrameWriters {
   public:
     // Starts the trajectories of `formats` (each one of frame_formats) in `dir`, removing
@@ -31,13 +39,26 @@ template <int D> class FrameWriters {
     // InputError for an unknown format.
     FrameWriters(const std::filesystem::path& dir, const std::vector<std::string>& formats);
 
+    // Continues the frames of an unfinished run (--resume) from `marks`: the trajectories
+    // cut back to them, and the snapshots numbered `marks.frames` and on removed.
+    FrameWriters(const std::filesystem::path& dir, const std::vector<std::string>& formats,
+                 const FrameMarks& marks);
+
     void write(const Frame<D>& f, std::uint64_t frame_number);
+
+    // `frames`: the run's frame count now (the caller's numbering).
+    FrameMarks marks(std::uint64_t frames) const;
+    // Every trajectory on the disk (a checkpoint must not outlive the frames it counts).
+    void sync();
 
     // Gives the trajectories their final names (also for a stopped run); a second call
     // does nothing.
     void commit();
 
   private:
+    void choose(const std::vector<std::string>& formats);
+    void make_snapshot_directory() const;
+
     std::filesystem::path dir_;
     bool vtp_ = false, json_ = false, table_ = false;
     std::unique_ptr<AtomicAppendFile> xyz_;

@@ -296,6 +296,53 @@ template <int D> GsdWriter<D>::GsdWriter(const fs::path& path) : path_(path), pa
     file_end_ = start.size();
 }
 
+template <int D>
+GsdWriter<D>::GsdWriter(const fs::path& path, const GsdMark& mark) : path_(path), part_(path) {
+    part_ += ".part";
+    const std::uint64_t index_bytes = mark.index_entries * entry_size;
+    if (mark.index_entries > mark.index_capacity || mark.index_capacity > (1ull << 40) ||
+        mark.index_location < header_size ||
+        mark.index_location + mark.index_capacity * entry_size > mark.file_end)
+        throw InputError(part_.string() + ": the checkpoint's record of it is inconsistent");
+    cut_back_part_file(path_, part_, mark.file_end);
+    errno = 0;
+    fd_ = ::open(part_.c_str(), O_RDWR | O_CLOEXEC);
+    if (fd_ < 0) throw InputError(part_.string() + ": cannot open for writing" + errno_text(errno));
+    frames_ = mark.frames;
+    file_end_ = mark.file_end;
+    index_location_ = mark.index_location;
+    index_capacity_ = mark.index_capacity;
+    namelist_location_ = header_size;
+    namelist_bytes_ = encode_namelist().size();
+    first_types_ = mark.first_types;
+    index_.resize(index_bytes);
+    std::size_t done = 0;
+    while (done < index_bytes) {
+        const ssize_t r = ::pread(fd_, index_.data() + done, index_bytes - done,
+                                  static_cast<off_t>(index_location_ + done));
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0)
+            throw InputError(part_.string() + ": cannot read its index" + errno_text(errno));
+        done += static_cast<std::size_t>(r);
+    }
+    // the entries of frames written after the checkpoint go, and the header points where
+    // it pointed then
+    write_at(index_location_ + index_bytes,
+             std::string((index_capacity_ - mark.index_entries) * entry_size, '\0'));
+    write_header();
+}
+
+template <int D> GsdMark GsdWriter<D>::mark() const {
+    return {frames_,     file_end_, index_location_, index_capacity_, index_.size() / entry_size,
+            first_types_};
+}
+
+template <int D> void GsdWriter<D>::sync() {
+    if (committed_ || fd_ < 0) return;
+    if (::fsync(fd_) != 0)
+        throw InputError(part_.string() + ": cannot write it to the disk" + errno_text(errno));
+}
+
 template <int D> GsdWriter<D>::~GsdWriter() {
     if (fd_ >= 0) ::close(fd_);
 }

@@ -34,12 +34,27 @@
 
 namespace pedesis {
 
+// Where a GSD trajectory stood when a checkpoint was written: what a writer needs to
+// continue the file from there, leaving it byte for byte as if it had never gone further.
+struct GsdMark {
+    std::uint64_t frames = 0;
+    std::uint64_t file_end = 0;
+    std::uint64_t index_location = 0;
+    std::uint64_t index_capacity = 0; // entries
+    std::uint64_t index_entries = 0;  // used
+    std::vector<std::string> first_types;
+};
+
 template <int D> class GsdWriter {
   public:
     // Creates `path` + ".part" (truncating an earlier one) and removes an earlier file at
     // `path`, like AtomicAppendFile: a stale complete trajectory must not pass for this
     // run's. The new file is already a valid GSD file with no frames.
     explicit GsdWriter(const std::filesystem::path& path);
+    // Continues the file of an unfinished run (--resume) from `mark`: its ".part" file (or
+    // the published file, renamed back) is cut to the mark's length, its index block and
+    // header as they were then. InputError naming the file if it does not fit the mark.
+    GsdWriter(const std::filesystem::path& path, const GsdMark& mark);
     // Leaves the ".part" file, which holds every frame appended so far.
     ~GsdWriter();
 
@@ -56,6 +71,9 @@ template <int D> class GsdWriter {
     const std::filesystem::path& path() const { return path_; }
     const std::filesystem::path& part_path() const { return part_; }
     std::uint64_t frames() const { return frames_; }
+    GsdMark mark() const;
+    // Everything appended so far on the disk; nothing to do once committed.
+    void sync();
 
   private:
     void write_at(std::uint64_t offset, const std::string& bytes);

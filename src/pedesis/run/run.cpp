@@ -24,11 +24,16 @@ EngineSetup<D> engine_setup(const RunConfig& c, const RunOptions& o, std::ostrea
     return event_engine_setup<D>(c, o, out);
 }
 
+RunOptions with_clock(RunOptions o, const RunConfig& c) {
+    o.checkpoint_seconds = c.checkpoint_seconds;
+    return o;
+}
+
 template <int D> class RunOf final : public Run {
   public:
     // The engines keep references to the config and options: the run owns both.
     RunOf(const RunConfig& c, const RunOptions& o, std::ostream& out)
-        : config_(c), options_(o), setup_(engine_setup<D>(config_, options_, out)),
+        : config_(c), options_(with_clock(o, c)), setup_(engine_setup<D>(config_, options_, out)),
           sim_(*setup_.engine, setup_.schedule, setup_.outputs, options_),
           has_steps_(c.dynamics != "event") {}
 

@@ -1,6 +1,7 @@
 #pragma once
 // What the command line adds to a config for every engine's run.
 #include "pedesis/core/communicator.hpp"
+#include "pedesis/io/resume_record.hpp"
 
 #include <fmt/format.h>
 
@@ -8,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace pedesis {
 
@@ -27,6 +29,13 @@ struct RunOptions {
     // `--device`: where a soft-engine run steps ("cpu" or "gpu"), over the config's
     // [run] device.
     std::optional<std::string> device;
+    // `--resume`: the marks of out_dir's checkpoints (checkpoint.outputs.json), `restart`
+    // being one of that directory's checkpoints. Its outputs are cut back to that
+    // checkpoint's marks and continued in place (run/resume.hpp).
+    std::optional<std::vector<OutputMarks>> resume_marks;
+    // [output] checkpoint_seconds: a checkpoint at the first row or frame after each
+    // interval of wall-clock time (0: none).
+    double checkpoint_seconds = 0.0;
 };
 
 // A --restart whose checkpoint already meets the [run] stop condition `why` ("time"):

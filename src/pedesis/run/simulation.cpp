@@ -54,9 +54,14 @@ template <int D> void Simulation<D>::open() {
     opened_ = true;
     if (in_directory())
         on_process_zero(options_.comm, [&] {
+            if (options_.resume_marks) {
+                reopen_outputs();
+                return;
+            }
             const auto& dir = options_.out_dir;
             const std::vector<const char*> stale = engine_.stale_results();
-            prepare_run_directory(dir, options_.config_path, options_.config_text, stale);
+            prepare_run_directory(dir, options_.config_path, options_.config_text, stale,
+                                  options_.restart ? RunStart::restarted : RunStart::fresh);
             log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv");
             std::string header;
             for (std::size_t c : columns_) header += (header.empty() ? "" : ",") + logged_[c];
@@ -74,6 +79,49 @@ template <int D> void Simulation<D>::open() {
     for (Trigger* t : {&schedule_.log, &schedule_.frames, &schedule_.checkpoint})
         t->schedule(engine_.step(), engine_.time());
     for (Operation& op : operations_) op.trigger.schedule(engine_.step(), engine_.time());
+    last_checkpoint_wall_ = std::chrono::steady_clock::now();
+}
+
+template <int D> void Simulation<D>::reopen_outputs() {
+    const auto& dir = options_.out_dir;
+    const std::vector<OutputMarks>& all = *options_.resume_marks;
+    const auto m = std::find_if(all.begin(), all.end(), [&](const OutputMarks& x) {
+        return marks_at(x, engine_.step(), engine_.time());
+    });
+    if (m == all.end() || m->frames.frames != engine_.frames())
+        throw InputError(fmt::format(
+            "{}: no marks of the checkpoint {} (t = {:.17g}, step {}), so its outputs cannot be "
+            "cut back to it; start the run again without --resume",
+            (dir / checkpoint_record_file).string(), options_.restart->string(), engine_.time(),
+            engine_.step()));
+    prepare_run_directory(dir, options_.config_path, options_.config_text, engine_.stale_results(),
+                          RunStart::resumed);
+    log_ = std::make_unique<AtomicAppendFile>(dir / "log.csv", m->log_bytes);
+    frames_ = std::make_unique<FrameWriters<D>>(dir, outputs_.formats, m->frames);
+    marks_ = {*m};
+}
+
+template <int D> void Simulation<D>::write_checkpoint(bool final) {
+    enter_stage("writing a checkpoint");
+    const auto& dir = options_.out_dir;
+    on_process_zero(options_.comm, [&] {
+        // every row and frame the marks count on the disk before the marks, and the marks
+        // before the checkpoint
+        log_->sync();
+        frames_->sync();
+        OutputMarks m;
+        m.step = engine_.step();
+        m.time = engine_.time();
+        m.log_bytes = log_->bytes();
+        m.frames = frames_->marks(engine_.frames());
+        m.final = final;
+        if (!marks_.empty() && marks_at(marks_.back(), m.step, m.time)) marks_.pop_back();
+        if (marks_.size() > 1) marks_.erase(marks_.begin());
+        marks_.push_back(m);
+        write_checkpoint_record(dir / checkpoint_record_file, marks_);
+    });
+    engine_.save_checkpoint(dir / "checkpoint.bin");
+    last_checkpoint_wall_ = std::chrono::steady_clock::now();
 }
 
 template <int D> void Simulation<D>::add_operation(Trigger trigger, std::function<void()> act) {
@@ -85,7 +133,6 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
     if (closed_) throw std::logic_error("Simulation::advance after close");
     const CleanStopWindow window; // a signal from here on stops at a step boundary
     enter_stage("running");
-    const auto& dir = options_.out_dir;
     // a time limit within rounding of the clock is reached (a stepped clock is k dt)
     const auto reached = [&] {
         return engine_.step() >= max_step ||
@@ -120,9 +167,11 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
                 write_frame();
                 schedule_.frames.schedule(step, time);
             }
-            if (schedule_.checkpoint.due(step, time)) {
-                enter_stage("writing a checkpoint");
-                engine_.save_checkpoint(dir / "checkpoint.bin");
+            const bool clock_due = options_.checkpoint_seconds > 0.0 && in_directory() &&
+                                   std::chrono::steady_clock::now() - last_checkpoint_wall_ >=
+                                       std::chrono::duration<double>(options_.checkpoint_seconds);
+            if (schedule_.checkpoint.due(step, time) || clock_due) {
+                write_checkpoint(false);
                 schedule_.checkpoint.schedule(step, time);
             }
             for (Operation& op : operations_)
@@ -139,11 +188,22 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
 }
 
 template <int D> void Simulation<D>::close(const char* ended_by) {
-    const CleanStopWindow window; // the close completes; a second signal cuts it short
+    const CleanStopWindow window; // the close completes; a second SIGINT cuts it short
     open();
     if (closed_) return;
     closed_ = true;
     if (!in_directory()) return;
+    const auto& dir = options_.out_dir;
+    const bool finished = stopped_by_ != nullptr;
+    // An unfinished run's checkpoint comes before the row and frame that show where it
+    // stopped: --resume continues the state the run had there and cuts those two away,
+    // as a run that never stopped has neither. A finished run's close keeps the checkpoint
+    // before it until the close is complete (previous_checkpoint_file): a run killed
+    // inside the close continues from there.
+    if (!finished)
+        write_checkpoint(false);
+    else
+        on_process_zero(options_.comm, [&] { keep_previous_checkpoint(dir); });
     // the end of the run always has a log row (summary.json's "final" is that row)
     if (rows_this_run_ == 0 || last_row_step_ != engine_.step() || last_row_time_ != engine_.time())
         try {
@@ -154,8 +214,7 @@ template <int D> void Simulation<D>::close(const char* ended_by) {
     if (frames_this_run_ == 0 || last_frame_step_ != engine_.step() ||
         last_frame_time_ != engine_.time())
         write_frame();
-    enter_stage("writing a checkpoint");
-    engine_.save_checkpoint(options_.out_dir / "checkpoint.bin");
+    if (finished) write_checkpoint(true);
     on_process_zero(options_.comm, [&] { close_files(); });
     nlohmann::json summary = engine_.summary(stopped_by_ ? stopped_by_ : ended_by);
     summary["stopped_by"] = stopped_by_ ? stopped_by_ : ended_by;
@@ -168,11 +227,17 @@ template <int D> void Simulation<D>::close(const char* ended_by) {
         else
             final_row[logged_[c]] = values_.at(c);
     }
-    on_process_zero(options_.comm, [&] {
-        write_file_atomically(options_.out_dir / "summary.json",
-                              [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
-    });
+    // the engine's own files first: summary.json is the last file of a run, the sign that
+    // it ended (--resume)
     engine_.finish(summary);
+    on_process_zero(options_.comm, [&] {
+        write_file_atomically(dir / "summary.json",
+                              [&](std::ostream& out) { out << summary.dump(2) << "\n"; });
+        if (!finished) return;
+        std::error_code ec;
+        std::filesystem::remove(dir / previous_checkpoint_file, ec);
+        write_checkpoint_record(dir / checkpoint_record_file, {marks_.back()});
+    });
 }
 
 template <int D> void Simulation<D>::run() {

@@ -11,6 +11,7 @@
 #include "pedesis/run/run_options.hpp"
 #include "pedesis/run/trigger.hpp"
 
+#include <chrono>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -89,6 +90,11 @@ template <int D> class Simulation {
     bool in_directory() const { return !options_.out_dir.empty(); }
     void write_frame();
     void write_log_row();
+    // The checkpoint, after the marks of every output written so far (io/resume_record.hpp).
+    void write_checkpoint(bool final);
+    // For --resume: the run directory's outputs, cut back to the marks of the checkpoint
+    // the engine was loaded from.
+    void reopen_outputs();
     void close_files();
     std::string failure_note() const;
     // Ends a run whose state broke (RunError): the files so far are committed, and the
@@ -109,6 +115,8 @@ template <int D> class Simulation {
     std::vector<Operation> operations_;
     std::unique_ptr<AtomicAppendFile> log_;
     std::unique_ptr<FrameWriters<D>> frames_;
+    std::vector<OutputMarks> marks_; // of the last two checkpoints, the newest last
+    std::chrono::steady_clock::time_point last_checkpoint_wall_;
     bool opened_ = false, closed_ = false;
     const char* stopped_by_ = nullptr;
     std::uint64_t frames_this_run_ = 0; // by this invocation (a restart starts at 0)

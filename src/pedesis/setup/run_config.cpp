@@ -238,6 +238,7 @@ void read_stepped_section(ConfigTable& root, RunConfig& c) {
 // [event] (or [stepped]), [run] and [output] of the hard-particle engines (times in
 // simulation units).
 void read_event_output(const toml::table& doc, ConfigTable& root, RunConfig& c);
+void read_checkpoint_seconds(ConfigTable& out, RunConfig& c);
 
 // [event] thermostat = "rescale", temperature and thermostat_interval (by default, the
 // time in which a particle of the heaviest species at that temperature moves half the
@@ -382,12 +383,20 @@ void read_event_output(const toml::table& doc, ConfigTable& root, RunConfig& c) 
         c.checkpoint_interval = out->number("checkpoint_interval", 0.0);
         if (c.checkpoint_interval < 0)
             throw InputError(out->where("checkpoint_interval") + ": must be >= 0");
+        read_checkpoint_seconds(*out, c);
         c.progress = out->boolean("progress").value_or(true);
         out->finish();
     }
 }
 
 std::string other_engine_note(const std::string& key, const RunConfig& c); // (below)
+
+// [output] checkpoint_seconds, every engine's: wall-clock seconds between checkpoints.
+void read_checkpoint_seconds(ConfigTable& out, RunConfig& c) {
+    c.checkpoint_seconds = out.number("checkpoint_seconds", 0.0);
+    if (!(c.checkpoint_seconds >= 0 && std::isfinite(c.checkpoint_seconds)))
+        throw InputError(out.where("checkpoint_seconds") + ": must be >= 0 (0: none)");
+}
 
 // [neighbor_list], [[force]], [[torque]], [[integrator]], [run] and [output] of the soft
 // engines (intervals in steps).
@@ -446,6 +455,7 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
         c.log_every = read_count(*out, "log_every", c.log_every, true);
         c.snapshot_every = read_count(*out, "snapshot_every", 0, false);
         c.checkpoint_every = read_count(*out, "checkpoint_every", 0, false);
+        read_checkpoint_seconds(*out, c);
         if (out->has("formats")) c.formats = read_formats(doc, *out);
         c.progress = out->boolean("progress").value_or(true);
         out->finish();

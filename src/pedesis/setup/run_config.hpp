@@ -92,6 +92,7 @@ struct RunConfig {
     int histogram_bins = 50;
     std::optional<double> histogram_start; // unset: histogram of the final state only
     double checkpoint_interval = 0.0;      // 0: only at the end
+    double checkpoint_seconds = 0.0;       // [output], every engine: wall clock (0: none)
     bool progress = true;
 
     // soft / active engines (dynamics = brownian, langevin or nve)
