@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -26,6 +27,7 @@ struct SweepArgs {
     std::string shard; // "I/N"
     int threads = 0;
     bool list = false;
+    bool resume = false;
     std::vector<std::string> sets; // --set KEY=VALUE
 };
 
@@ -106,7 +108,7 @@ void run_sweep(const SweepArgs& a) {
             continue;
         }
         const auto start = std::chrono::steady_clock::now();
-        const PointOutcome outcome = run_point(*p, std::cerr);
+        const PointOutcome outcome = run_point(*p, std::cerr, a.resume);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (outcome == PointOutcome::failed) failed = 1;
@@ -120,10 +122,18 @@ void run_sweep(const SweepArgs& a) {
     if (guard.signal() != 0) {
         // no collective step now: the other processes may be stopping or gone
         write_sweep_table(sweep);
+        const int sig = guard.signal();
+        const bool checkpoint_signal = sig == SIGTERM || sig == SIGUSR1;
         std::cout << fmt::format("pedesis sweep: interrupted by signal {}; run the same command "
-                                 "again to go on (done points are skipped)\n",
-                                 guard.signal());
+                                 "with --resume to go on (done points are skipped, the "
+                                 "interrupted one continues from its checkpoint){}\n",
+                                 sig,
+                                 checkpoint_signal ? fmt::format("; exit code {}: checkpointed, "
+                                                                 "resume me",
+                                                                 exit_checkpointed)
+                                                   : "");
         std::cout.flush();
+        if (checkpoint_signal) throw SilentExit{exit_checkpointed};
         guard.reraise();
     }
     world.barrier();
@@ -158,6 +168,9 @@ void add_sweep_command(CLI::App& app) {
                     "1 per process under mpirun)")
         ->check(CLI::Range(1, 1024));
     cmd->add_flag("--list", a->list, "Print the points and which are done, and exit");
+    cmd->add_flag("--resume", a->resume,
+                  "Continue an interrupted point in place from its checkpoint (without it, "
+                  "an unfinished point runs again from its start)");
     add_set_option(*cmd, a->sets, "the base config of every point");
     cmd->callback([a] { run_sweep(*a); });
 }

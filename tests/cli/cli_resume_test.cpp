@@ -259,6 +259,32 @@ TEST_F(Resume, ARecordThatDoesNotFitIsRefused) {
     EXPECT_EQ(read("r/log.csv.part"), log);
 }
 
+// A sweep killed in a point, then `pedesis sweep --resume`: the done points are skipped,
+// the killed one continues from its checkpoint, and every point's directory and the
+// table end as those of a sweep never killed.
+TEST_F(Resume, ASweepResumesItsInterruptedPointInPlace) {
+    write("sweep.toml", "base = \"run.toml\"\n[vary]\n\"species.B.mass\" = [2.0, 3.0]\n");
+    ASSERT_EQ(run_pedesis("sweep sweep.toml --out ref", dir, 120).exit_code, 0);
+    const pid_t pid =
+        start_pedesis(dir, dir / "console.txt", {"sweep", "sweep.toml", "--out", "sw"});
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!fs::exists(dir / "sw" / "point_001" / "checkpoint.bin") &&
+           std::chrono::steady_clock::now() < give_up)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+    ASSERT_TRUE(fs::exists(dir / "sw" / "point_000" / "summary.json"));
+    ASSERT_FALSE(fs::exists(dir / "sw" / "point_001" / "summary.json"));
+    const CliResult r = run_pedesis("sweep sweep.toml --out sw --resume", dir, 120);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("point_000"), std::string::npos) << r.output;
+    EXPECT_NE(read("sw/logs/point_001.txt").find("resuming sw/point_001 from"), std::string::npos)
+        << read("sw/logs/point_001.txt");
+    for (const char* point : {"point_000", "point_001"})
+        EXPECT_EQ(directory_differences(dir / "ref" / point, dir / "sw" / point), "") << point;
+    EXPECT_EQ(read("sw/sweep.csv"), read("ref/sweep.csv"));
+}
+
 TEST_F(Resume, SteeringAndRestartDoNotMixWithResume) {
     const CliResult view = run_pedesis("run run.toml --out v --resume --view", dir, 60);
     EXPECT_EQ(view.exit_code, 2) << view.output;

@@ -1,5 +1,9 @@
 #include "pedesis/run/sweep.hpp"
 
+#include "pedesis/run/resume.hpp"
+#include "pedesis/run/run_directory.hpp"
+#include "pedesis/run/run_directory_lock.hpp"
+
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/atomic_file.hpp"
 #include "pedesis/io/config_table.hpp"
@@ -200,7 +204,7 @@ fs::path failure_note(const SweepPoint& point) {
     return p.replace_extension(".failed");
 }
 
-PointOutcome run_point(const SweepPoint& point, std::ostream& console) {
+PointOutcome run_point(const SweepPoint& point, std::ostream& console, bool resume) {
     std::error_code ec;
     fs::create_directories(point.config.parent_path(), ec);
     fs::create_directories(point.console.parent_path(), ec);
@@ -211,6 +215,16 @@ PointOutcome run_point(const SweepPoint& point, std::ostream& console) {
     o.config_path = point.config;
     o.out_dir = point.dir;
     try {
+        const RunDirectoryLock lock(point.dir);
+        if (resume) {
+            const ResumePlan plan = plan_resume(point.dir, run_directory_config(point.config, {}));
+            lines << "pedesis: " << plan.why << "\n";
+            if (plan.kind == ResumePlan::Kind::finished) return PointOutcome::done;
+            if (plan.kind == ResumePlan::Kind::resume) {
+                o.restart = plan.checkpoint;
+                o.resume_marks = plan.marks;
+            }
+        }
         const std::unique_ptr<Run> run = make_run(load_run_config(point.config.string()), o, lines);
         run->run();
         return run->stopped_by() ? PointOutcome::done : PointOutcome::interrupted;

@@ -59,7 +59,10 @@ enum class PointOutcome { done, failed, interrupted };
 // the run finds) is reported on `console`, its message kept in failure_note(point), and
 // returned, not thrown. A caught signal
 // (core/interrupt.hpp) ends the run early.
-PointOutcome run_point(const SweepPoint& point, std::ostream& console);
+// With `resume`, an unfinished run in the point's directory goes on in place from its
+// checkpoint (run/resume.hpp), as `pedesis run --resume`. The point's directory is locked
+// while it runs (run/run_directory_lock.hpp).
+PointOutcome run_point(const SweepPoint& point, std::ostream& console, bool resume = false);
 
 // OUT/logs/NAME.failed: the message of a point whose run failed (removed when it reruns).
 std::filesystem::path failure_note(const SweepPoint& point);
