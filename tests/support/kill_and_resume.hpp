@@ -1,5 +1,6 @@
 #pragma once
-// Kills real runs with SIGKILL at random instants and resumes them in place (--resume),
+// Kills real runs with SIGKILL (or stops them with SIGTERM) at random instants and
+// resumes them in place (--resume),
 // again and again, until they finish; then every file of the run directory must be the
 // one a run that was never killed wrote, byte for byte. summary.json may differ only in
 // its timings. Each kill is classed by what the directory shows it interrupted.
@@ -148,10 +149,15 @@ inline KillTally kill_and_resume(const std::filesystem::path& dir, const std::st
                     std::chrono::duration<double>(1.1 * seconds * uniform(random)));
             int status = 0;
             if (kill_it && waitpid(pid, &status, WNOHANG) == 0) {
-                kill(pid, SIGKILL);
+                // one stop in four is a scheduler's SIGTERM: a clean stop at whatever step
+                // it lands on, whose checkpoint then lies off every grid
+                const bool term = uniform(random) < 0.25;
+                kill(pid, term ? SIGTERM : SIGKILL);
                 waitpid(pid, &status, 0);
                 ++tally.kills;
-                ++tally.by_class[kill_class(run)];
+                const bool clean = WIFEXITED(status) && WEXITSTATUS(status) == 75;
+                ++tally.by_class[term ? (clean ? "SIGTERM, a clean stop" : "SIGTERM in set-up")
+                                      : kill_class(run)];
             } else {
                 if (!kill_it) waitpid(pid, &status, 0);
                 ended_by_itself = true;

@@ -3,6 +3,7 @@
 // targets' own code (fuzz/fuzz_inputs.hpp) in every build: each must be read or refused
 // with an InputError. Under `make sanitize` a memory or UB error here fails the run.
 #include "fuzz/fuzz_inputs.hpp"
+#include "fuzz/fuzz_resume_input.hpp"
 #include "fuzz/fuzz_run_input.hpp"
 
 #include <gtest/gtest.h>
@@ -40,6 +41,10 @@ int replay(const std::string& target, Input input) {
 
 } // namespace
 
+TEST(FuzzRegressions, ResumeRecordAndRunDirectory) {
+    // a record of a real run (cut back to each entry) and a config.toml of another config
+    EXPECT_GE(replay("fuzz_resume", pedesis::fuzz::resume_input), 2);
+}
 TEST(FuzzRegressions, ConfigReader) {
     EXPECT_GE(replay("fuzz_config", pedesis::fuzz::config_input), 3);
 }

@@ -185,7 +185,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         for (;;) {
             const std::uint64_t target = book_.transport ? std::min(last, transport_step()) : last;
             if (state_.step < target)
-                evolve_until(state_, *evolver_, SoftClock{time_start_, step_start_, c_.dt}, target,
+                evolve_until(state_, *evolver_, SoftClock{clock_t0_, clock_step0_, c_.dt}, target,
                              until_time);
             if (state_.step < target) break; // a signal, or until_time
             if (book_.transport && state_.step == transport_step()) sample_transport();
@@ -282,7 +282,13 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         whole_current_ = false;
         wall_start_ = std::chrono::steady_clock::now();
         step_start_ = state_.step;
-        time_start_ = state_.time;
+        // The clock of a run that kept its dt from step 0 is step * dt: a restart (or a
+        // --resume at any step) that finds its time there keeps that origin, so that its
+        // times are bit for bit those of the run that never stopped; a time elsewhere (dt
+        // changed at an earlier restart) starts the clock from the checkpoint.
+        const bool on_the_clock = static_cast<double>(state_.step) * c_.dt == state_.time;
+        clock_t0_ = on_the_clock ? 0.0 : state_.time;
+        clock_step0_ = on_the_clock ? 0 : state_.step;
     }
 
     nlohmann::json summary(const char* /*stopped_by*/) override {
@@ -794,8 +800,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     const Integrator<D>* overdamped_ = nullptr;
     std::vector<double> bath_T_; // per species, of the overdamped integrator
     const Momentum momentum_ = momentum_of(c_);
-    std::uint64_t step_start_ = 0;
-    double time_start_ = 0.0;
+    std::uint64_t step_start_ = 0; // of this invocation, for its speed
+    double clock_t0_ = 0.0;        // the origin of the clock (SoftClock)
+    std::uint64_t clock_step0_ = 0;
     std::uint64_t per_sample_ = 1, first_sample_ = 0; // [transport]'s steps
     std::vector<Vec<D>> positions_, velocities_;      // a sample's followed particles
     std::vector<double> particle_energy_;             // the heat flux's scratch
