@@ -159,6 +159,34 @@ TEST_F(Resume, AFullDiskStopsTheRunNamingTheFileAndTheCheckpointSurvives) {
     EXPECT_EQ(directory_differences(dir / "ref", dir / "full"), "");
 }
 
+// A disk that fills: a tmpfs of half the run's size, mounted in a mount namespace of the
+// test's own (unshare), so the writes fail with ENOSPC. The run stops with exit 2 naming
+// the file; once there is room (the tmpfs remounted larger) the resume ends as the run
+// that never met a full disk.
+TEST_F(Resume, ADiskThatFillsLosesNoCheckpoint) {
+    if (shell("unshare -rm true", dir).exit_code != 0)
+        GTEST_SKIP() << "no user and mount namespaces here (unshare -rm): the ulimit test "
+                        "above covers the write failure";
+    ASSERT_EQ(run_pedesis("run run.toml --out ref", dir, 120).exit_code, 0);
+    std::uintmax_t total = 0;
+    for (const auto& f : fs::recursive_directory_iterator(dir / "ref"))
+        if (f.is_regular_file()) total += f.file_size();
+    fs::create_directories(dir / "small");
+    const std::string pedesis = std::string("'") + PEDESIS_BINARY + "'";
+    const CliResult r = shell(
+        "unshare -rm sh -c 'mount -t tmpfs -o size=" + std::to_string(total / 2 / 1024) +
+            "k tmpfs small && " + pedesis + " run run.toml --out small/run; echo \"first=$?\"; " +
+            "ls small/run; mount -o remount,size=64m small && " + pedesis +
+            " run run.toml --out small/run --resume; echo \"second=$?\"; cp -a small/run grown'",
+        dir);
+    EXPECT_NE(r.output.find("first=2"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("resuming small/run from small/run/checkpoint.bin"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("second=0"), std::string::npos) << r.output;
+    EXPECT_EQ(directory_differences(dir / "ref", dir / "grown"), "");
+}
+
 // [output] checkpoint_seconds alone: a run killed after a few intervals has a checkpoint,
 // and goes on from it.
 TEST_F(Resume, CheckpointsComeOnTheWallClock) {
