@@ -352,6 +352,54 @@ TEST_F(MpiRun, CoincidentParticlesAreRefusedOnceOnEveryProcess) {
     }
 }
 
+// The line of `output` that holds `what` ("" if none).
+std::string line_with(const std::string& output, const std::string& what) {
+    const auto at = output.find(what);
+    if (at == std::string::npos) return "";
+    const auto begin = output.rfind('\n', at);
+    const auto start = begin == std::string::npos ? 0 : begin + 1;
+    return output.substr(start, output.find('\n', at) - start);
+}
+
+// Two coincident pairs from an [initial] file: particles 0 and 1 in the domain of the
+// last process (every coordinate L/4), 2 and 3 in that of process 0, one at x = -L/2 and
+// one at x = +L/2 (the same place through the periodic boundary). Every process count
+// must name the pair one process names, whichever process finds which pair.
+TEST_F(MpiRun, CoincidentParticlesFromAFileGiveTheSerialMessage) {
+    for (const int d : {2, 3}) {
+        const double half = d == 2 ? 12.0 : 6.0;
+        const std::string rest = d == 2 ? "" : fmt::format(", {}", -half / 2);
+        const std::string a = fmt::format("[{}, {}{}]", half / 2, half / 2,
+                                          d == 2 ? "" : fmt::format(", {}", half / 2));
+        write("start.json",
+              fmt::format("{{\"system\": {{\"particles\": [{{\"id\": 0, \"r\": {}}}, "
+                          "{{\"id\": 1, \"r\": {}}}, {{\"id\": 2, \"r\": [{}, {}{}]}}, "
+                          "{{\"id\": 3, \"r\": [{}, {}{}]}}]}}}}\n",
+                          a, a, -half, -half / 2, rest, half, -half / 2, rest));
+        write("same.toml", fmt::format("dimension = {}\ndynamics = \"langevin\"\nseed = 2\n"
+                                       "[box]\nlength = {}\n[[species]]\nname = \"A\"\n"
+                                       "radius = 0.5\n[initial]\nfile = \"start.json\"\n"
+                                       "[[force]]\nname = \"harmonic\"\nk = 10.0\n"
+                                       "[[integrator]]\nname = \"langevin\"\nT = 0.1\n"
+                                       "gamma = 1.0\n[run]\ndt = 0.01\nsteps = 10\n"
+                                       "[output]\nprogress = false\n",
+                                       d, 2 * half));
+        const CliResult serial = run_pedesis("run same.toml --out serial", dir, 120);
+        ASSERT_EQ(serial.exit_code, 2) << serial.output;
+        const std::string message = line_with(serial.output, "pedesis: error:");
+        ASSERT_NE(message.find("particles 0 and 1 start at the same position"), std::string::npos)
+            << serial.output;
+        for (const int p : {2, 3}) {
+            const CliResult r = run_mpi(p, "run same.toml --out np", dir, 120);
+            EXPECT_EQ(r.exit_code, 2) << d << "D, " << p << " processes: " << r.output;
+            EXPECT_EQ(occurrences(r.output, "pedesis: error:"), 1u) << r.output;
+            EXPECT_EQ(line_with(r.output, "pedesis: error:"), message)
+                << d << "D, " << p << " processes: " << r.output;
+            EXPECT_FALSE(std::filesystem::exists(dir / "np" / "log.csv"));
+        }
+    }
+}
+
 // Two particles placed almost on top of each other in the domain of process 1 (x > 0 of
 // a 2 x 1 grid) blow up at the first step there; every process stops with exit 3, the
 // message of process 1 is printed once (by process 0), and the run directory keeps its

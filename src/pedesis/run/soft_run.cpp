@@ -42,31 +42,35 @@ namespace {
 
 // Two particles at the same place (coinciding lattices of two species, a file with a
 // repeated position) have pair forces without a direction: 0/0, and the run would stop
-// at its first log row on a NaN. Bad input, named at set-up; one pass over the list.
-// Under a domain decomposition each process checks its share and ghosts (every pair lies
-// in some process's list), and the lowest process that found one tells the others, so
-// that every process stops with the same message (exit 2) and none waits for another.
+// at its first log row on a NaN. Bad input, named at set-up. The message names the pair
+// of lowest tags (the lower tag first, then the higher), so that it does not depend on
+// the order of the list nor on how many processes share the run: under a domain
+// decomposition each process checks its share and ghosts (every pair lies in some
+// process's list), and two reductions find that pair, so that every process stops with
+// the same message (exit 2) and none waits for another.
 template <int D>
 void refuse_coincident_particles(const SoftState<D>& s, const NeighborList<D>& list,
                                  const std::string& file, Communicator* comm) {
-    std::string message;
-    for (std::size_t i = 0; i < list.size() && message.empty(); ++i)
-        for (const std::uint32_t* j = list.begin(i); j != list.end(i); ++j)
-            if (norm2(s.box.minimum_image(s.p.position[i] - s.p.position[*j])) == 0.0) {
-                message = fmt::format(
-                    "{}: particles {} and {} start at the same position: the force between "
-                    "them has no direction; move one of them (two lattices of different "
-                    "species in the same region coincide: give each its own region)",
-                    file, std::min(s.p.tag[i], s.p.tag[*j]), std::max(s.p.tag[i], s.p.tag[*j]));
-                break;
-            }
-    if (comm && comm->size() > 1) {
-        const double none = -std::numeric_limits<double>::infinity();
-        const double first = comm->max(message.empty() ? none : -comm->rank());
-        if (first == none) return;
-        message = comm->broadcast(message, static_cast<int>(-first));
-    }
-    if (!message.empty()) throw InputError(message);
+    constexpr double none = std::numeric_limits<double>::infinity();
+    // the least key(lower tag, higher tag) over the coincident pairs (none: no pair)
+    const auto least = [&](auto&& key) {
+        double best = none;
+        for (std::size_t i = 0; i < list.size(); ++i)
+            for (const std::uint32_t* j = list.begin(i); j != list.end(i); ++j)
+                if (norm2(s.box.minimum_image(s.p.position[i] - s.p.position[*j])) == 0.0)
+                    best = std::min(best, key(std::min(s.p.tag[i], s.p.tag[*j]),
+                                              std::max(s.p.tag[i], s.p.tag[*j])));
+        return comm && comm->size() > 1 ? -comm->max(-best) : best;
+    };
+    const double lower = least([](std::uint32_t a, std::uint32_t) { return double(a); });
+    if (lower == none) return;
+    const double higher =
+        least([&](std::uint32_t a, std::uint32_t b) { return a == lower ? double(b) : none; });
+    throw InputError(fmt::format(
+        "{}: particles {} and {} start at the same position: the force between them has no "
+        "direction; move one of them (two lattices of different species in the same region "
+        "coincide: give each its own region)",
+        file, static_cast<std::uint32_t>(lower), static_cast<std::uint32_t>(higher)));
 }
 
 std::vector<Species> species_table(const RunConfig& c) {
