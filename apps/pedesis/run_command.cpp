@@ -239,6 +239,7 @@ void add_run_command(CLI::App& app) {
             if (desk) desk->run_ended();
         }
         if (live && guard.signal() == 0) {
+            lock.reset(); // the run is done: serving its directory does not write it
             console << fmt::format("pedesis: the run is done; {} still shows it until Ctrl-C\n",
                                    live->url())
                     << std::flush;

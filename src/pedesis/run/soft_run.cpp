@@ -211,6 +211,15 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     void save_checkpoint(const std::filesystem::path& path) override {
         const SoftState<D>& s = whole();
         on_process_zero(o_.comm, [&] { save_soft_checkpoint(path, s, *evolver_, book_); });
+        if (domain_) {
+            // Shared, the run goes on from what a restart from this checkpoint starts from
+            // (the whole state in tag order, scattered, a fresh list), since the processes'
+            // storage orders, which their force sums follow, are not in it: a resumed run
+            // then steps as this one does, bit for bit.
+            domain_->settle_in_tag_order(state_);
+            evolver_->set_domain(domain_.get());
+            evolver_->neighbor_list();
+        }
     }
 
     std::vector<const char*> stale_results() const override {
@@ -352,9 +361,11 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     void finish(const nlohmann::json& j) override {
         if (!writer()) return;
-        console_ << fmt::format("pedesis: done at step {} (t = {:.6g}) in {:.3g} s, {:.3g} "
+        const bool interrupted = j["stopped_by"] == "interrupted";
+        console_ << fmt::format("pedesis: {} at step {} (t = {:.6g}) in {:.3g} s, {:.3g} "
                                 "particle-steps/s, {} list rebuilds\n",
-                                state_.step, state_.time, j["wall_seconds"].template get<double>(),
+                                interrupted ? "stopped" : "done", state_.step, state_.time,
+                                j["wall_seconds"].template get<double>(),
                                 j["particle_steps_per_second"].template get<double>(),
                                 evolver_->list_builds());
         const double msd = j["msd"].template get<double>();
