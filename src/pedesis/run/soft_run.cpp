@@ -211,11 +211,12 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     void save_checkpoint(const std::filesystem::path& path) override {
         const SoftState<D>& s = whole();
         on_process_zero(o_.comm, [&] { save_soft_checkpoint(path, s, *evolver_, book_); });
-        if (domain_) {
-            // Shared, the run goes on from what a restart from this checkpoint starts from
-            // (the whole state in tag order, scattered, a fresh list), since the processes'
-            // storage orders, which their force sums follow, are not in it: a resumed run
-            // then steps as this one does, bit for bit.
+        // Shared, the run goes on from what a restart from a checkpoint of its step grid
+        // starts from (the whole state in tag order, scattered, a fresh list), since the
+        // processes' storage orders, which their force sums follow, are not in it: a run
+        // resumed there then steps as this one does, bit for bit. Only on the grid, so
+        // that checkpoints on the wall clock or on a signal change no trajectory.
+        if (domain_ && c_.checkpoint_every > 0 && state_.step % c_.checkpoint_every == 0) {
             domain_->settle_in_tag_order(state_);
             evolver_->set_domain(domain_.get());
             evolver_->neighbor_list();

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace pedesis {
 
@@ -202,10 +203,10 @@ template <int D> void DomainDecomposition<D>::scatter(SoftState<D>& s) const {
     s.keep_only(keep);
 }
 
-template <int D> void DomainDecomposition<D>::redistribute(SoftState<D>& s, double sort_cell) {
-    // Migration: between rebuilds no particle moves further than a domain is wide, so
-    // particles go to partners, point to point; should one go further (all processes
-    // agree on that), every process exchanges with every other.
+template <int D> void DomainDecomposition<D>::migrate(SoftState<D>& s) {
+    // Between rebuilds no particle moves further than a domain is wide, so particles go
+    // to partners, point to point; should one go further (all processes agree on that),
+    // every process exchanges with every other.
     const std::size_t owned = s.owned();
     std::vector<char> keep(owned);
     std::vector<int> to(owned);
@@ -228,6 +229,10 @@ template <int D> void DomainDecomposition<D>::redistribute(SoftState<D>& s, doub
     std::vector<std::size_t> counts;
     append(far ? comm_.exchange(everyone, counts) : comm_.exchange_with(partners_, send_, counts),
            s);
+}
+
+template <int D> void DomainDecomposition<D>::redistribute(SoftState<D>& s, double sort_cell) {
+    migrate(s);
     if (sort_cell > 0.0) s.apply_order(space_filling_order(box_, s.p.position, s.p.tag, sort_cell));
 
     // ghosts
@@ -244,8 +249,18 @@ template <int D> void DomainDecomposition<D>::redistribute(SoftState<D>& s, doub
         }
     }
     const std::size_t mine = s.size();
+    std::vector<std::size_t> counts;
     append(comm_.exchange_with(partners_, send_, counts), s);
     s.ghosts = s.size() - mine;
+}
+
+template <int D> void DomainDecomposition<D>::settle_in_tag_order(SoftState<D>& s) {
+    migrate(s);
+    std::vector<std::uint32_t> order(s.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return s.p.tag[a] < s.p.tag[b]; });
+    s.apply_order(order);
 }
 
 template <int D> void DomainDecomposition<D>::refresh_ghosts(SoftState<D>& s) {

@@ -53,6 +53,12 @@ template <int D> class DomainDecomposition {
     // sort_cell > 0 each process's particles are first ordered along a space-filling
     // curve of that spacing (spatial/spatial_sort.hpp), as the periodic sort of one process.
     void redistribute(SoftState<D>& s, double sort_cell = 0.0);
+    // What scatter() makes of the whole state in tag order, which a checkpoint holds:
+    // this process's particles (those that left its domain sent to theirs) in tag order,
+    // no ghosts; the next redistribute() chooses them. A run that does this after each
+    // checkpoint goes on from the state a restart from that checkpoint starts from, so
+    // the two step alike, bit for bit (each process sums its forces in its storage order).
+    void settle_in_tag_order(SoftState<D>& s);
     // Positions, velocities and directors of the ghosts, from their owners.
     void refresh_ghosts(SoftState<D>& s);
     // The whole state in tag order, on process 0 (`whole` is left alone elsewhere).
@@ -75,6 +81,8 @@ template <int D> class DomainDecomposition {
                          double skin) const;
 
   private:
+    // Particles that left this domain go to their domain's process; ghosts are dropped.
+    void migrate(SoftState<D>& s);
     int domain_of(const Vec<D>& r) const;
     std::array<int, D> coords_of(const Vec<D>& r) const;
     int rank_of(const std::array<int, D>& c) const;
