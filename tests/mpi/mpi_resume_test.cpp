@@ -206,5 +206,21 @@ TEST_F(MpiResume, KilledAndResumedOnTwoProcessesEndsAsIfNeverKilled) {
     EXPECT_EQ(diff, "") << "seed " << seed << "; killed during:" << kills;
 }
 
+// Checkpoints on the wall clock under MPI: the processes' clocks differ, and all must
+// write the checkpoint together (each deciding alone ended in MPI_ERR_TRUNCATE or a hang).
+// The run ends, its trajectory that of a run without them.
+TEST_F(MpiResume, CheckpointsOnTheWallClockAreTakenByAllProcessesTogether) {
+    std::string config = abp_config();
+    config.replace(config.find("checkpoint_every = 400"), 22, "checkpoint_seconds = 0.02");
+    write("clock.toml", config);
+    const CliResult r = run_mpi(2, "run clock.toml --out clock", dir, 120);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    config.replace(config.find("checkpoint_seconds = 0.02"), 25, "checkpoint_seconds = 0.0");
+    write("plain.toml", config);
+    ASSERT_EQ(run_mpi(2, "run plain.toml --out plain", dir, 120).exit_code, 0);
+    EXPECT_EQ(file_text(dir / "clock" / "trajectory.gsd"),
+              file_text(dir / "plain" / "trajectory.gsd"));
+}
+
 } // namespace
 } // namespace pedesis::test

@@ -167,9 +167,12 @@ template <int D> const char* Simulation<D>::advance(std::uint64_t max_step, doub
                 write_frame();
                 schedule_.frames.schedule(step, time);
             }
-            const bool clock_due = options_.checkpoint_seconds > 0.0 && in_directory() &&
-                                   std::chrono::steady_clock::now() - last_checkpoint_wall_ >=
-                                       std::chrono::duration<double>(options_.checkpoint_seconds);
+            bool clock_due = options_.checkpoint_seconds > 0.0 && in_directory() &&
+                             std::chrono::steady_clock::now() - last_checkpoint_wall_ >=
+                                 std::chrono::duration<double>(options_.checkpoint_seconds);
+            // the processes of a run write a checkpoint together: when the first is due
+            if (options_.checkpoint_seconds > 0.0 && options_.comm && options_.comm->size() > 1)
+                clock_due = options_.comm->max(clock_due ? 1.0 : 0.0) > 0.0;
             if (schedule_.checkpoint.due(step, time) || clock_due) {
                 write_checkpoint(false);
                 schedule_.checkpoint.schedule(step, time);
