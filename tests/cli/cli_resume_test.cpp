@@ -192,6 +192,7 @@ TEST_F(Resume, ADiskThatFillsLosesNoCheckpoint) {
 TEST_F(Resume, CheckpointsComeOnTheWallClock) {
     std::string config = resume_config("event");
     config.replace(config.find("checkpoint_interval = 3.0"), 25, "checkpoint_seconds = 0.1");
+    config.replace(config.find("time = 120.0"), 12, "time = 600.0"); // well past the kill
     write("clock.toml", config);
     ASSERT_EQ(run_pedesis("run clock.toml --out ref", dir, 120).exit_code, 0);
     const pid_t pid = start_until_running({"run", "clock.toml", "--out", "clock"}, "clock");
@@ -267,7 +268,8 @@ TEST_F(Resume, UnderTimeoutEveryRunEndsComplete) {
 // A record that is not what it claims (corrupt, or lengths the files do not have) is
 // refused with exit 2 naming the file; nothing is cut.
 TEST_F(Resume, ARecordThatDoesNotFitIsRefused) {
-    const pid_t pid = start_until_running({"run", "run.toml", "--out", "r"}, "r");
+    const pid_t pid =
+        start_until_running({"run", "run.toml", "--out", "r", "--set", "run.time=1e9"}, "r");
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     kill(pid, SIGKILL);
     waitpid(pid, nullptr, 0);
