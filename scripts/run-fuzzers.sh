@@ -44,7 +44,7 @@ run_target() {
   fi
 }
 
-targets=(fuzz_checkpoint fuzz_run fuzz_config fuzz_tutorial_json fuzz_xyz fuzz_gsd fuzz_sweep)
+targets=(fuzz_checkpoint fuzz_run fuzz_config fuzz_tutorial_json fuzz_xyz fuzz_gsd fuzz_sweep fuzz_resume)
 # the viewer's server, in builds that have it (PEDESIS_GRAPHICS)
 if [ -x "$build/fuzz/fuzz_view_request" ]; then targets=(fuzz_view_request "${targets[@]}"); fi
 # the longest first, so that the two cores finish together
