@@ -100,19 +100,6 @@ void remove_temporaries(const fs::path& dir) {
     }
 }
 
-// The summary's stop condition; "" where there is no summary or it cannot be read.
-std::string stopped_by(const fs::path& summary) {
-    std::error_code ec;
-    if (!fs::is_regular_file(summary, ec) || fs::file_size(summary, ec) > (64u << 20)) return "";
-    try {
-        const nlohmann::json j = nlohmann::json::parse(read_text(summary));
-        if (j.is_object() && j.contains("stopped_by") && j["stopped_by"].is_string())
-            return j["stopped_by"].get<std::string>();
-    } catch (const nlohmann::json::exception&) {
-    }
-    return "";
-}
-
 } // namespace
 
 std::optional<std::string> config_difference(const std::string& was, const std::string& now,
@@ -128,6 +115,20 @@ std::optional<std::string> config_difference(const std::string& was, const std::
     auto diff = d.compare("", &a, &b);
     end_changed = d.end_changed;
     return diff;
+}
+
+std::string finished_stop(const fs::path& dir) {
+    const fs::path summary = dir / "summary.json";
+    std::error_code ec;
+    if (!fs::is_regular_file(summary, ec) || fs::file_size(summary, ec) > (64u << 20)) return "";
+    try {
+        const nlohmann::json j = nlohmann::json::parse(read_text(summary));
+        if (!j.is_object() || !j.contains("stopped_by") || !j["stopped_by"].is_string()) return "";
+        const std::string why = j["stopped_by"].get<std::string>();
+        return why == "interrupted" || why == "script" ? "" : why;
+    } catch (const nlohmann::json::exception&) {
+        return "";
+    }
 }
 
 ResumePlan plan_resume(const fs::path& dir, const std::string& config_text) {
@@ -149,8 +150,8 @@ ResumePlan plan_resume(const fs::path& dir, const std::string& config_text) {
     remove_temporaries(dir);
     const fs::path previous = dir / previous_checkpoint_file;
     const fs::path checkpoint = dir / "checkpoint.bin";
-    const std::string stop = stopped_by(dir / "summary.json");
-    const bool finished = !stop.empty() && stop != "interrupted" && !fs::exists(previous, ec);
+    const std::string stop = finished_stop(dir);
+    const bool finished = !stop.empty() && !fs::exists(previous, ec);
     if (finished && !end_changed) {
         plan.kind = ResumePlan::Kind::finished;
         plan.stopped_by = stop;

@@ -28,6 +28,11 @@ struct ResumePlan {
     std::string why;                  // a line for the console
 };
 
+// The stop condition of the finished run in `dir` (its summary.json's stopped_by), or ""
+// where there is none: no summary, an unreadable one, or the summary of a run that was
+// interrupted or closed by a script before a stop condition.
+std::string finished_stop(const std::filesystem::path& dir);
+
 // `config_text`: what the run would write as DIR/config.toml (run_directory_config).
 // Leftover temporaries of a killed run (*.tmp.<pid>) are removed.
 ResumePlan plan_resume(const std::filesystem::path& dir, const std::string& config_text);

@@ -179,12 +179,7 @@ Sweep load_sweep(const std::string& path, const std::optional<fs::path>& out,
 }
 
 bool point_done(const SweepPoint& point) {
-    std::ifstream in(point.dir / "summary.json");
-    if (!in) return false;
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("stopped_by")) return false;
-    const auto& why = j["stopped_by"];
-    return why.is_string() && why != "interrupted" && why != "script" && why != "";
+    return !finished_stop(point.dir).empty();
 }
 
 namespace {
