@@ -64,6 +64,12 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
         {"mean_free_time", "time", "N_mobile t / (2 collisions): mean time between collisions",
          hard, !count, may_be_infinite},
         {"list_rebuilds", "1", "neighbour-list builds so far", "event, soft", count},
+        {"max_force", "energy / length",
+         "largest force on a particle, max_i |F_i|: what [minimize] force_tolerance stops on",
+         "minimize"},
+        {"force_norm", "energy / length", "norm of the whole force vector, sqrt(sum_i |F_i|^2)",
+         "minimize"},
+        {"fire_dt", "time", "FIRE's adaptive time step", "minimize"},
         {"packing_fraction", "1", "volume fraction of the particles (growth runs)", "event"},
         {"growth_pressure", "1",
          "reduced pressure P V / (N T) over the last N collisions "

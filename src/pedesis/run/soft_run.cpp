@@ -9,6 +9,7 @@
 #include "pedesis/run/shear_output.hpp"
 #include "pedesis/run/simulation.hpp"
 #include "pedesis/run/soft_checkpoint.hpp"
+#include "pedesis/run/soft_minimize.hpp"
 #include "pedesis/run/transport_plan.hpp"
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/build_system.hpp"
@@ -98,6 +99,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                   std::optional<ParticleFile<D>> start)
         : c_(complete_from_initial_file<D>(c, start ? &*start : nullptr)), o_(o),
           console_(console) {
+        if (c_.dynamics == "minimize") SoftMinimization<D>::refuse(c_, o_, on_gpu());
         const std::vector<Species> table = species_table(c_);
         if (!o_.restart) {
             state_ = build_soft_state<D>(c_, start ? &*start : nullptr);
@@ -111,6 +113,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         evolver_->set_sort_interval(c_.sort_every);
         for (const auto* list : {&c_.forces, &c_.torques, &c_.integrators})
             for (const auto& spec : *list) add_plugin(*evolver_, spec, table, c_.seed);
+        if (c_.dynamics == "minimize") minimize_.emplace(c_, state_, *evolver_);
         // (under MPI the list is built after the decomposition, on each process's share)
         if (!o_.restart && !(o_.comm && o_.comm->size() > 1))
             refuse_coincident_particles(state_, evolver_->neighbor_list(), c_.file, nullptr);
@@ -188,9 +191,11 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         // [transport]'s samples fall on their own steps, between the Simulation's
         for (;;) {
             const std::uint64_t target = book_.transport ? std::min(last, transport_step()) : last;
-            if (state_.step < target)
-                evolve_until(state_, *evolver_, SoftClock{clock_t0_, clock_step0_, c_.dt}, target,
-                             until_time);
+            const SoftClock clock{clock_t0_, clock_step0_, c_.dt};
+            if (state_.step < target && minimize_)
+                minimize_->advance(state_, *evolver_, clock, target, until_time);
+            else if (state_.step < target)
+                evolve_until(state_, *evolver_, clock, target, until_time);
             if (state_.step < target) break; // a signal, or until_time
             if (book_.transport && state_.step == transport_step()) sample_transport();
             if (state_.step >= last) break;
@@ -201,6 +206,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             stepping_.communication_seconds += o_.comm->seconds() - comm_begin;
             stepping_.bytes_sent += o_.comm->bytes_sent() - bytes_begin;
         }
+        if (minimize_ && minimize_->stopped_by()) return {minimize_->stopped_by(), false};
         return {state_.step >= c_.steps ? "steps" : nullptr, false};
     }
 
@@ -236,6 +242,9 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         for (int slot : sym_slots<D>()) c.push_back(std::string("pressure_") + sym_suffix(slot));
         for (const auto& f : evolver_->forces())
             for (std::string& name : f->log_columns(state_)) c.push_back(std::move(name));
+        if (minimize_)
+            for (std::string& name : SoftMinimization<D>::log_columns())
+                c.push_back(std::move(name));
         c.push_back("list_rebuilds");
         return c;
     }
@@ -256,6 +265,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             values.push_back(m.ideal_tensor[slot] + pair.virial_tensor[slot] / V +
                              m.active_tensor[slot]);
         add_term_values(values);
+        if (minimize_) minimize_->add_values(values);
         values.push_back(static_cast<double>(evolver_->list_builds()));
         if (state_.step > 0) {
             if (state_.box.sheared()) {
@@ -293,6 +303,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                                     "along y, velocities peculiar\n",
                                     state_.box.shear_rate());
         if (fresh) evolver_->compute_forces(); // so that frame 0 shows them; the step reuses them
+        if (minimize_) minimize_->start(state_);
         whole_current_ = false;
         wall_start_ = std::chrono::steady_clock::now();
         step_start_ = state_.step;
@@ -352,6 +363,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         if (book_.transport)
             j["transport"] = book_.transport->summary(transport_scales(
                 c_, state_.box, whole_state.p, j["mean_temperature"].template get<double>()));
+        if (minimize_) minimize_->add_summary(j);
         j["list_rebuilds"] = evolver_->list_builds();
         j["frames"] = book_.frames;
         j["wall_seconds"] = wall;
@@ -401,6 +413,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                                  j["mean_temperature"].template get<double>()));
             print_transport(console_, j["transport"]);
         }
+        if (minimize_) minimize_->print_end(console_, j);
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
@@ -759,7 +772,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         if (last_progress_ && now - *last_progress_ < std::chrono::seconds(1)) return;
         last_progress_ = now;
         // as at the end of the run: what this system has (see finish)
-        const std::string shown = directors_matter()
+        const std::string shown = minimize_ ? minimize_->progress()
+                                  : directors_matter()
                                       ? fmt::format("polar order = {:<8.4f}", m.order)
                                   : inertial() ? fmt::format("T = {:<10.5g}", m.temperature)
                                                : fmt::format("MSD = {:<10.5g}", m.msd);
@@ -799,6 +813,8 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     SoftState<D> state_; // under a domain decomposition: this process's share and ghosts
     std::unique_ptr<Evolver<D>> evolver_;
     std::unique_ptr<DomainDecomposition<D>> domain_;
+    // FIRE's stopping and columns, for dynamics = "minimize"
+    std::optional<SoftMinimization<D>> minimize_;
     SoftState<D> whole_; // gathered, on process 0
     bool whole_current_ = false;
     std::size_t particles_ = 0; // in the whole system

@@ -8,6 +8,7 @@
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/setup/lattice.hpp"
+#include "pedesis/setup/minimize_config.hpp"
 #include "pedesis/setup/velocities.hpp"
 #include "pedesis/soft/integrator_set.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
@@ -418,19 +419,25 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
     for (auto& t : root.tables("integrator"))
         c.integrators.push_back(read_plugin(t, PluginKind::integrator));
 
-    // the rule the Python Evolver follows too (soft/integrator_set.hpp), and the position
-    // integrator is the one `dynamics` names
-    for (std::size_t k = 0; k < c.integrators.size(); ++k)
-        check_integrator_added({c.integrators.begin(), c.integrators.begin() + k}, c.integrators[k],
-                               PluginNaming::config);
-    check_integrators_complete(c.integrators, c.torques,
-                               c.file + ": dynamics = \"" + c.dynamics +
-                                   "\" needs an [[integrator]] with name = \"" + c.dynamics + "\"",
-                               PluginNaming::config);
-    const auto mover = std::find_if(c.integrators.begin(), c.integrators.end(), moves_positions);
-    if (mover->name != c.dynamics)
-        throw InputError(root.where("dynamics") + ": is '" + c.dynamics +
-                         "' but the position integrator is '" + mover->name + "'");
+    if (c.dynamics == "minimize") {
+        check_minimize_terms(c.forces, c.torques, c.integrators);
+    } else {
+        // the rule the Python Evolver follows too (soft/integrator_set.hpp), and the position
+        // integrator is the one `dynamics` names
+        for (std::size_t k = 0; k < c.integrators.size(); ++k)
+            check_integrator_added({c.integrators.begin(), c.integrators.begin() + k},
+                                   c.integrators[k], PluginNaming::config);
+        check_integrators_complete(c.integrators, c.torques,
+                                   c.file + ": dynamics = \"" + c.dynamics +
+                                       "\" needs an [[integrator]] with name = \"" + c.dynamics +
+                                       "\"",
+                                   PluginNaming::config);
+        const auto mover =
+            std::find_if(c.integrators.begin(), c.integrators.end(), moves_positions);
+        if (mover->name != c.dynamics)
+            throw InputError(root.where("dynamics") + ": is '" + c.dynamics +
+                             "' but the position integrator is '" + mover->name + "'");
+    }
 
     auto run = root.table("run");
     if (!run) throw InputError(c.file + ": missing [run] table (give steps and dt)");
@@ -449,6 +456,7 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
         c.device_where = run->where("device");
     }
     run->finish();
+    if (c.dynamics == "minimize") c.minimize = read_minimize_config(root, c.dt, c.list_skin);
 
     c.formats = {"vtp", "gsd"};
     if (auto out = root.table("output")) {
@@ -539,6 +547,7 @@ constexpr EngineKey engine_keys[] = {
      "output.snapshot_interval (in time units)"},
     {"output.checkpoint_every", "brownian, langevin and nve", nullptr,
      "output.checkpoint_interval (in time units)"},
+    {"minimize", "minimize", nullptr, nullptr},
     {"event", "event", "the soft engines' terms are [[force]], [[torque]] and [[integrator]]",
      "[stepped] (this config's dynamics)"},
     {"run.time", "event and stepped", "the run lasts run.steps x run.dt", nullptr},
@@ -579,10 +588,10 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     c.dimension = static_cast<int>(dim);
     c.dynamics = root.string("dynamics").value_or("event");
     if (c.dynamics != "event" && c.dynamics != "stepped" && c.dynamics != "brownian" &&
-        c.dynamics != "langevin" && c.dynamics != "nve")
-        throw InputError(
-            root.where("dynamics") + ": '" + c.dynamics +
-            "' is not available (this build has: event, stepped, brownian, langevin, nve)");
+        c.dynamics != "langevin" && c.dynamics != "nve" && c.dynamics != "minimize")
+        throw InputError(root.where("dynamics") + ": '" + c.dynamics +
+                         "' is not available (this build has: event, stepped, brownian, langevin, "
+                         "nve, minimize)");
     if (auto s = root.integer("seed")) {
         if (*s < 0) throw InputError(root.where("seed") + ": must be >= 0");
         c.seed = static_cast<std::uint64_t>(*s);

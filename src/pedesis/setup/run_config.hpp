@@ -2,6 +2,7 @@
 // The contents of a run's TOML config, validated. Every key is documented in
 // docs/config.md; unknown keys are errors.
 #include "pedesis/setup/transport_config.hpp"
+#include "pedesis/soft/fire_params.hpp"
 #include "pedesis/soft/plugin_spec.hpp"
 
 #include <cstdint>
@@ -31,7 +32,7 @@ struct SpeciesConfig {
 struct RunConfig {
     std::string file; // where it came from, for messages
     int dimension = 2;
-    std::string dynamics = "event"; // event | stepped | brownian | langevin | nve
+    std::string dynamics = "event"; // event | stepped | brownian | langevin | nve | minimize
     // the soft/active engines; event and stepped are the hard-particle engines
     bool soft() const { return dynamics != "event" && dynamics != "stepped"; }
     // A script (the Python module) gives the stop conditions: a hard-particle config
@@ -109,6 +110,7 @@ struct RunConfig {
     std::uint64_t checkpoint_every = 0; // 0: only at the end
 
     TransportConfig transport; // [transport]
+    FireParams minimize;       // [minimize] of dynamics = "minimize" (FIRE)
 };
 
 // Whether `name` can name a species: 1 to 64 of A-Z a-z 0-9 _ - . + (it names log
