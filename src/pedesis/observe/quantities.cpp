@@ -8,7 +8,7 @@ constexpr bool may_be_infinite = true;
 constexpr const char* hard = "event, stepped";
 constexpr const char* all = "event, stepped, soft";
 constexpr const char* soft = "soft";
-constexpr const char* inertial = "stepped, event, langevin, nve";
+constexpr const char* inertial = "stepped, event, langevin, nve, bussi, nose_hoover";
 } // namespace
 
 const std::vector<QuantityInfo>& quantity_catalogue() {
@@ -50,7 +50,12 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
          soft},
         {"total_energy", "energy",
          "potential plus kinetic energy: constant in NVE up to the integrator's error",
-         "langevin, nve"},
+         "langevin, nve, bussi, nose_hoover"},
+        {"conserved_energy", "energy",
+         "total_energy plus the energy of the thermostat's bath (bussi: minus the kinetic energy "
+         "its rescales added; nose_hoover: the chain's kinetic and potential terms): constant "
+         "up to the integrator's error",
+         "bussi, nose_hoover"},
         {"pressure", "energy / volume",
          "pressure P; hard particles: averaged over the interval since the previous row "
          "(walls on walled axes, collision virial on periodic ones); soft: at the instant, "

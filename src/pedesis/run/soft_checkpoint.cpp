@@ -19,8 +19,8 @@ namespace {
 
 // 3: the run's summed temperature; 4: active_ou's active velocities; 5: Lees-Edwards
 // shear (the rate, the box's offset and the list's, the velocity profile and P_xy series)
-// and the [transport] measurement
-constexpr std::uint32_t soft_checkpoint_version = 5;
+// and the [transport] measurement; 6: the integrators' own state (a thermostat's), by name
+constexpr std::uint32_t soft_checkpoint_version = 6;
 
 // The state's arrays in checkpoint order; one list serves saving and loading.
 template <class State, class F> void for_each_array(State& s, F&& f) {
@@ -64,6 +64,11 @@ void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>&
     binary::put(out, book.shear.shear_stress);
     binary::put<std::uint8_t>(out, book.transport.has_value());
     if (book.transport) book.transport->save(out);
+    binary::put<std::uint64_t>(out, evolver.integrators().size());
+    for (const auto& i : evolver.integrators()) {
+        binary::put(out, i->name());
+        binary::put(out, i->saved_state());
+    }
     file.commit();
 }
 
@@ -117,6 +122,19 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
             binary::get(in, measured);
             if (measured > 1) throw InputError("file is corrupt (transport flag)");
             if (measured) book.transport.emplace(TransportMeasurement<D>::load(in, "checkpoint"));
+        }
+        // An integrator the checkpoint has no state for (a thermostat that a restart
+        // switches on) starts from its own.
+        std::uint64_t integrators = 0;
+        if (version >= 6) binary::get(in, integrators);
+        if (integrators > 64) throw InputError("file is corrupt (integrator count)");
+        for (std::uint64_t k = 0; k < integrators; ++k) {
+            std::string name;
+            std::vector<double> saved;
+            binary::get(in, name);
+            binary::get(in, saved);
+            for (const auto& i : evolver.integrators())
+                if (i->name() == name) i->restore_state(saved);
         }
         file.finish();
         if (book.shear.velocity_sum.size() != book.shear.count.size())

@@ -131,6 +131,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         }
         check_walls(); // (a restored state has its box from here on)
         check_active_ou();
+        check_thermostat();
         check_shear();
         read_observable_parameters(table);
         read_swim_forces();
@@ -238,6 +239,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     std::vector<std::string> log_columns() const override {
         std::vector<std::string> c = {"step", "time", "polar_order", "msd", "potential_energy"};
         if (inertial()) c.insert(c.end(), {"kinetic_energy", "temperature", "total_energy"});
+        if (thermostat_) c.push_back("conserved_energy");
         c.insert(c.end(), {"pressure", "pressure_ideal", "pressure_virial", "pressure_active"});
         for (int slot : sym_slots<D>()) c.push_back(std::string("pressure_") + sym_suffix(slot));
         for (const auto& f : evolver_->forces())
@@ -260,6 +262,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                       {static_cast<double>(state_.step), state_.time, m.order, m.msd, pair.energy});
         if (inertial())
             values.insert(values.end(), {m.kinetic, m.temperature, pair.energy + m.kinetic});
+        if (thermostat_) values.push_back(pair.energy + m.kinetic + thermostat_->bath_energy());
         values.insert(values.end(), {pressure, m.ideal, virial, m.active});
         for (int slot : sym_slots<D>())
             values.push_back(m.ideal_tensor[slot] + pair.virial_tensor[slot] / V +
@@ -629,6 +632,21 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     // active_ou's force is gamma p with the position integrator's friction, and its active
     // velocities stay on one process: both refused at set-up rather than at the first step.
+    // An NVT thermostat (bussi, nose_hoover) measures the temperature as the log does, and
+    // sums the kinetic energy over the particles of one process.
+    void check_thermostat() {
+        thermostat_ = nullptr;
+        for (const auto& i : evolver_->integrators())
+            if (!std::isnan(i->bath_energy())) thermostat_ = i.get();
+        if (!thermostat_) return;
+        thermostat_->set_conserved_momentum(
+            conserved_momentum_axes(state_.p, state_.box, momentum_));
+        if (o_.comm && o_.comm->size() > 1)
+            throw InputError(c_.file + ": the " + thermostat_->name() +
+                             " thermostat runs on one process: it rescales by the kinetic "
+                             "energy of the whole system; start it without mpirun");
+    }
+
     void check_active_ou() const {
         for (const auto& f : evolver_->forces())
             if (const auto* ou = dynamic_cast<const ActiveOU<D>*>(f.get())) {
@@ -830,6 +848,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     } stepping_; // by this invocation
     SoftRunBook<D> book_;
     const Integrator<D>* overdamped_ = nullptr;
+    Integrator<D>* thermostat_ = nullptr; // bussi or nose_hoover: the bath of conserved_energy
     std::vector<double> bath_T_; // per species, of the overdamped integrator
     const Momentum momentum_ = momentum_of(c_);
     std::uint64_t step_start_ = 0; // of this invocation, for its speed

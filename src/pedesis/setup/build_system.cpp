@@ -366,7 +366,10 @@ ParticleStore<D> build_particles(const RunConfig& c, const Box<D>& box,
 
 Momentum momentum_of(const RunConfig& c) {
     if (c.dynamics == "event" || c.dynamics == "stepped") return Momentum::conserving;
-    if (c.dynamics == "nve" && !one_body_forces(c)) return Momentum::conserving;
+    // (bussi and nose_hoover scale the velocities about the centre of mass: they keep it)
+    const bool newtonian =
+        c.dynamics == "nve" || c.dynamics == "bussi" || c.dynamics == "nose_hoover";
+    if (newtonian && !one_body_forces(c)) return Momentum::conserving;
     return Momentum::not_conserving;
 }
 

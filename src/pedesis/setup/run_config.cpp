@@ -588,10 +588,12 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     c.dimension = static_cast<int>(dim);
     c.dynamics = root.string("dynamics").value_or("event");
     if (c.dynamics != "event" && c.dynamics != "stepped" && c.dynamics != "brownian" &&
-        c.dynamics != "langevin" && c.dynamics != "nve" && c.dynamics != "minimize")
-        throw InputError(root.where("dynamics") + ": '" + c.dynamics +
-                         "' is not available (this build has: event, stepped, brownian, langevin, "
-                         "nve, minimize)");
+        c.dynamics != "langevin" && c.dynamics != "nve" && c.dynamics != "bussi" &&
+        c.dynamics != "nose_hoover" && c.dynamics != "minimize")
+        throw InputError(
+            root.where("dynamics") + ": '" + c.dynamics +
+            "' is not available (this build has: event, stepped, brownian, langevin, nve, bussi, "
+            "nose_hoover, minimize)");
     if (auto s = root.integer("seed")) {
         if (*s < 0) throw InputError(root.where("seed") + ": must be >= 0");
         c.seed = static_cast<std::uint64_t>(*s);

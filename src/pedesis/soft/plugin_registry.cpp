@@ -3,7 +3,9 @@
 #include "pedesis/core/error.hpp"
 #include "pedesis/io/config_table.hpp"
 #include "pedesis/soft/brownian.hpp"
+#include "pedesis/soft/bussi.hpp"
 #include "pedesis/soft/langevin.hpp"
+#include "pedesis/soft/nose_hoover.hpp"
 #include "pedesis/soft/pair_force.hpp"
 #include "pedesis/soft/pair_potentials.hpp"
 #include "pedesis/soft/plugin_rows.hpp"
@@ -172,6 +174,38 @@ std::vector<PluginInfo> core_rows() {
             builders([]<int D>(Evolver<D>& e, const PluginSpec&, const std::vector<Species>&,
                                std::uint64_t) {
                 e.add_integrator(std::make_unique<VelocityVerletIntegrator<D>>());
+            })),
+        row({PluginKind::integrator,
+             "bussi",
+             "BussiIntegrator",
+             {{"T", required, ParamLimit::non_negative, shared, "temperature"},
+              {"tau", required, ParamLimit::positive, shared,
+               "relaxation time of the kinetic energy"}},
+             "velocity Verlet with the kinetic energy rescaled stochastically: dK = (f T / 2 - "
+             "K) dt / tau + 2 sqrt(K T / 2) dW / sqrt(tau) (Bussi, Donadio & Parrinello 2007)"},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>&,
+                               std::uint64_t seed) {
+                e.add_integrator(std::make_unique<BussiIntegrator<D>>(
+                    uniform(s, "T", 0.0), uniform(s, "tau", 0.0), seed));
+            })),
+        row({PluginKind::integrator,
+             "nose_hoover",
+             "NoseHooverIntegrator",
+             {{"T", required, ParamLimit::positive, shared, "temperature"},
+              {"tau", required, ParamLimit::positive, shared,
+               "period of the thermostat's oscillations (masses Q_1 = f T tau^2, Q_j = T tau^2)"},
+              {"chain", optional, ParamLimit::positive, shared,
+               "thermostats in the chain, a whole number (default 3, as LAMMPS' tchain)"}},
+             "velocity Verlet with m dv/dt = F - m v_1 v, v_1 the first of a Nose-Hoover chain "
+             "(Martyna, Klein & Tuckerman 1992)"},
+            builders([]<int D>(Evolver<D>& e, const PluginSpec& s, const std::vector<Species>&,
+                               std::uint64_t) {
+                const double chain = uniform(s, "chain", 3.0);
+                if (chain != std::floor(chain) || chain > 1000.0)
+                    throw InputError(s.params.at("chain").where +
+                                     ": must be a whole number of thermostats (at most 1000)");
+                e.add_integrator(std::make_unique<NoseHooverIntegrator<D>>(
+                    uniform(s, "T", 0.0), uniform(s, "tau", 0.0), static_cast<int>(chain)));
             })),
     };
 }

@@ -6,6 +6,7 @@
 #include "pedesis/soft/soft_state.hpp"
 #include "pedesis/spatial/neighbor_list.hpp"
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -119,6 +120,19 @@ template <int D> class Integrator {
     virtual double friction(std::size_t /*s*/, std::size_t /*count*/) const {
         return std::numeric_limits<double>::quiet_NaN();
     }
+
+    // The NVT thermostats' (bussi, nose_hoover) needs beyond the step. The energy their
+    // bath holds, which K + U plus it keeps constant up to the integrator's error (the
+    // log's conserved_energy), or NaN for an integrator without one.
+    virtual double bath_energy() const { return std::numeric_limits<double>::quiet_NaN(); }
+    // What a restart needs beyond the particles to go on bit for bit (the thermostat's
+    // variables), and its restoring: InputError for numbers that cannot be its state.
+    virtual std::vector<double> saved_state() const { return {}; }
+    virtual void restore_state(const std::vector<double>& /*saved*/) {}
+    // The axes along which the dynamics conserves momentum (observe/thermo.hpp), so that
+    // a thermostat counts degrees of freedom and measures the temperature as the log does
+    // (none unless told).
+    virtual void set_conserved_momentum(const std::array<bool, D>& /*axes*/) {}
 };
 
 } // namespace pedesis
