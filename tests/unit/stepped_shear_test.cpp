@@ -85,6 +85,20 @@ template <int D> void expect_meeting_across_the_face(const Vec<D>& a, const Vec<
     EXPECT_NEAR(e.counters().virial[3], kick * s * -0.9, 1e-9);
 }
 
+// Two fixed obstacles whose images slide into each other across the face: they pass
+// through each other (neither can move) and the step ends. Before, the pair's approach was
+// found again after every "collision" that changed nothing, and the step never ended
+// (found by fuzz_run).
+TEST(SteppedShear, FixedObstaclesPassThroughEachOthersSlidingImages) {
+    ParticleStore<2> p = test::particle_pair<2>(Vec<2>{{0.0, 4.55}}, Vec<2>{{-3.0, -4.55}});
+    p.species_table[0].mass = std::numeric_limits<double>::infinity();
+    SteppedEngine<2> e(p, test::sheared_box<2>(10.0, 0.1), params_with(0.05));
+    for (int k = 0; k < 1200; ++k) e.step(); // t = 60: the images met near t = 28.5
+    EXPECT_EQ(e.counters().pair_collisions, 0u);
+    EXPECT_EQ(e.particles().position[0][1], 4.55);
+    EXPECT_EQ(e.particles().position[1][1], -4.55);
+}
+
 TEST(SteppedShear, TwoParticlesMeetAcrossTheFaceWhenTheirImagesLineUp) {
     expect_meeting_across_the_face<2>(Vec<2>{{0.0, 4.55}}, Vec<2>{{-3.0, -4.55}}, 1);
     // in 3D across the face below (B above A's image): the roles swapped

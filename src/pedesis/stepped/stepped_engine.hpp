@@ -149,6 +149,9 @@ template <int D> class SteppedEngine {
     // Most pairs of the cell scan do not touch: that test is here, small enough to inline
     // into the scan; the rest of the work is out of line.
     void consider(std::uint32_t i, std::uint32_t j) {
+        // Two fixed obstacles never collide: neither can move, so the approach of their
+        // sheared images would be re-found forever within the step.
+        if (inv_mass_[p_.species[i]] == 0.0 && inv_mass_[p_.species[j]] == 0.0) return;
         double dvx = 0.0;
         const Vec<D> dr = separation(p_.position[i] - p_.position[j], dvx);
         const double sigma = contact(i, j);
