@@ -22,6 +22,8 @@ enum class RngStream : std::uint32_t {
     initial_director = 5,
     active_velocity = 6, // active_ou's p: its stationary start and its noise
     tumble = 7,          // run_and_tumble: whether and where to
+    andersen = 20,       // the event engine's Andersen thermostat (event/event_driving.cpp)
+    white_noise = 21,    // the event engine's white-noise kicks
 };
 
 class CounterRng {

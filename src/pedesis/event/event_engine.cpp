@@ -5,6 +5,7 @@
 #include "pedesis/core/particle_checks.hpp"
 #include "pedesis/core/stage.hpp"
 #include "pedesis/event/collision_rules.hpp"
+#include "pedesis/event/falling_times.hpp"
 #include "pedesis/event/prediction.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/spatial/spatial_sort.hpp"
@@ -39,6 +40,16 @@ void validate(const EventParams& p) {
     if (p.thermostat_temperature > 0.0 &&
         !(p.thermostat_interval > 0.0 && std::isfinite(p.thermostat_interval)))
         throw InputError("event.thermostat_interval must be a positive finite number");
+    for (double g : p.gravity)
+        if (!(std::abs(g) <= 1e100)) throw InputError("event.gravity must be finite numbers");
+    if (!(p.andersen_rate >= 0.0 && p.andersen_rate <= 1e100))
+        throw InputError("event.thermostat_rate must be a finite number >= 0");
+    if (p.andersen_rate > 0.0 && !(p.andersen_temperature > 0.0 && p.andersen_temperature <= 1e100))
+        throw InputError("event.temperature must be a positive finite number");
+    if (!(p.driving_rate >= 0.0 && p.driving_rate <= 1e100))
+        throw InputError("event.driving_rate must be a finite number >= 0");
+    if (p.driving_rate > 0.0 && !(p.driving_strength > 0.0 && p.driving_strength <= 1e100))
+        throw InputError("event.driving_strength must be a positive finite number");
 }
 
 // The time of a periodic pass `interval` after now: RunError when the interval is below
@@ -136,11 +147,8 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     take_flights(std::vector<double>(p_.size(), 0.0), std::vector<std::uint32_t>(p_.size(), 0),
                  std::vector<std::uint16_t>(p_.size(), 0));
     if (params_.tc > 0.0) last_collision_.assign(size(), -never);
-    kinetic_ = 0.0;
-    for (std::size_t i = 0; i < size(); ++i)
-        if (inv_mass_[f_[i].species] > 0.0)
-            kinetic_ += 0.5 * norm2(f_[i].v) / inv_mass_[f_[i].species];
-    kinetic_exact_ = kinetic_;
+    start_gravity();
+    resum_kinetic_energy();
     if (params_.thermostat_temperature > 0.0 && params_.growth_rate > 0.0)
         throw InputError("event.thermostat: growth holds the kinetic energy itself; use one or "
                          "the other");
@@ -161,6 +169,7 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
     setup();
     if (params_.thermostat_temperature > 0.0)
         next_rescale_ = next_pass_time(now_, params_.thermostat_interval, "thermostat");
+    start_driving();
     if (box_.sheared()) {
         next_shear_relist_ = next_pass_time(now_, slide_ / shear_velocity_, "shear");
         track_flux_moments(); // the exact kinetic stress of the log's P_xy
@@ -522,13 +531,54 @@ template <int D> void EventEngine<D>::prefetch_list(std::uint32_t i) const {
 template <int D> void EventEngine<D>::advance(std::uint32_t i) {
     const double dt = now_ - f_[i].t;
     if (dt != 0.0) {
-        f_[i].x += f_[i].v * dt;
+        if (falling_) [[unlikely]] {
+            f_[i].x += f_[i].v * dt + gravity_ * (0.5 * dt * dt);
+            f_[i].v += gravity_ * dt;
+        } else {
+            f_[i].x += f_[i].v * dt;
+        }
         f_[i].t = now_;
     }
 }
 
 template <int D> double EventEngine<D>::predict(std::uint32_t i) {
+    if (falling_) [[unlikely]]
+        return predict_falling(i);
     return growth_.growing ? predict_with<true>(i) : predict_with<false>(i);
+}
+
+// predict_with in gravity (no growth, no shear, no batch kernel): the pair times are
+// those of straight flights from now_, since both particles fall alike; the walls' and
+// the shell's are falling_times.hpp's.
+template <int D> double EventEngine<D>::predict_falling(std::uint32_t i) {
+    const Vec<D> vi = v_now(i);
+    const Vec<D> xi = x_now(i);
+    const double ri = radius_[f_[i].species];
+    double best =
+        falling_shell_exit_time(box_.minimum_image(xi - ev_[i].centre), vi, gravity_, shell_);
+    std::int32_t partner = shell_event;
+    for (int a = 0; a < D; ++a) {
+        if (box_.periodic(a)) continue;
+        bool upper = false;
+        const double tw =
+            falling_wall_time(xi[a], vi[a], gravity_[a], box_.lo(a), box_.hi(a), ri, upper);
+        if (tw < best) {
+            best = tw;
+            partner = wall_event_base - (2 * a + (upper ? 1 : 0));
+        }
+    }
+    const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
+    for (std::uint16_t k = 0; k < f_[i].n_nbr; ++k) {
+        const std::uint32_t j = list[k];
+        const Vec<D> dr = box_.minimum_image(xi - x_now(j));
+        const double tc =
+            pair_collision_time_before(dr, vi - v_now(j), ri + radius_[f_[j].species], best);
+        if (tc < best) {
+            best = tc;
+            partner = static_cast<std::int32_t>(j);
+        }
+    }
+    return settle_event(i, best, partner);
 }
 
 // The earliest event of particle i. While the radii grow (Growing), contact and wall
@@ -583,10 +633,7 @@ template <int D> template <bool Growing> double EventEngine<D>::predict_with(std
             }
         }
     }
-    if (best == never) partner = no_event;
-    ev_[i].partner = partner;
-    ev_[i].count = partner >= 0 ? f_[partner].count : 0;
-    return now_ + best;
+    return settle_event(i, best, partner);
 }
 
 // predict_with's scan of the list with the batch kernel of the AVX2 and AVX-512 sets.
@@ -809,6 +856,9 @@ template <int D> void EventEngine<D>::rescale_temperature() {
 
 template <int D> void EventEngine<D>::track_flux_moments() {
     if (moments_on_) return;
+    if (falling_ || params_.andersen_rate > 0.0 || params_.driving_rate > 0.0)
+        throw InputError("[transport] needs force-free, deterministic flights: not with "
+                         "event.gravity, thermostat = \"andersen\" or event.driving");
     moments_ = FluxMoments<D>{};
     moments_.t = now_;
     recount_kinetic_moments();
@@ -842,7 +892,23 @@ template <int D> void EventEngine<D>::resum_kinetic_energy() {
     double k = 0.0;
     for (std::size_t i = 0; i < size(); ++i)
         if (inv_mass_[f_[i].species] > 0.0) k += 0.5 * norm2(f_[i].v) / inv_mass_[f_[i].species];
+    if (falling_)
+        for (std::size_t i = 0; i < size(); ++i) k += height_energy(f_[i].species, f_[i].x);
     kinetic_ = kinetic_exact_ = k;
+}
+
+template <int D> double EventEngine<D>::falling_kinetic_energy() const {
+    double k = 0.0;
+    for (std::size_t i = 0; i < size(); ++i)
+        if (inv_mass_[f_[i].species] > 0.0) k += 0.5 * norm2(v_now(i)) / inv_mass_[f_[i].species];
+    return k;
+}
+
+template <int D> double EventEngine<D>::potential_energy() const {
+    if (!falling_) return 0.0;
+    double u = 0.0;
+    for (std::size_t i = 0; i < size(); ++i) u += height_energy(f_[i].species, x_now(i));
+    return u;
 }
 
 // Most of a particle's neighbours stay neighbours when it rebuilds its list, and their
@@ -914,6 +980,10 @@ template <int D> std::string EventEngine<D>::stall_cause() const {
                            "cannot grow further: ask for less (event.growth_packing_fraction, "
                            "event.growth_max_pressure) or grow more slowly",
                            packing_fraction());
+    if (falling_ && params_.tc == 0.0)
+        return "a particle has come to rest on a wall or another particle under gravity, or "
+               "bounces ever faster on it (inelastic collapse): set event.tc > 0 (TC model) "
+               "or start the particles moving";
     if (params_.restitution < 1.0 || params_.wall_restitution < 1.0)
         return "this is inelastic collapse: set event.tc > 0 (TC model) or raise the "
                "restitution";
@@ -937,6 +1007,12 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
             pass < te && pass <= limits.time) [[unlikely]] {
             set_now(pass);
             periodic_pass();
+            continue;
+        }
+        if (const double kick = std::min(next_andersen_, next_kick_);
+            kick < te && kick <= limits.time) [[unlikely]] {
+            set_now(kick);
+            stochastic_event();
             continue;
         }
         if (te == never) return StopReason::no_events; // nothing moves: time is meaningless
@@ -1002,13 +1078,13 @@ template <int D> StopReason EventEngine<D>::run(const StopLimits& limits) {
 }
 
 template <int D> Vec<D> EventEngine<D>::position_now(std::size_t i) const {
-    Vec<D> r = f_[i].x + f_[i].v * (now_ - f_[i].t);
+    Vec<D> r = x_now(i);
     box_.wrap(r);
     return r;
 }
 
 template <int D> std::array<std::int32_t, D> EventEngine<D>::image_now(std::size_t i) const {
-    Vec<D> r = f_[i].x + f_[i].v * (now_ - f_[i].t);
+    Vec<D> r = x_now(i);
     std::array<std::int32_t, D> image = image_shift<D>(box_.wrap(r));
     for (int a = 0; a < D; ++a) image[a] += image_[i][a];
     return image;
@@ -1032,7 +1108,7 @@ template <int D> const ParticleStore<D>& EventEngine<D>::lazy_particles() const 
     p_.velocity.resize(size());
     for (std::size_t i = 0; i < size(); ++i) {
         p_.position[i] = f_[i].x;
-        p_.velocity[i] = f_[i].v;
+        p_.velocity[i] = v_now(i);
         if (box_.sheared() && inv_mass_[f_[i].species] > 0.0) p_.velocity[i][0] -= flow_velocity(i);
     }
     return p_;
@@ -1054,7 +1130,7 @@ ParticleStore<D> EventEngine<D>::snapshot(std::vector<std::array<std::int32_t, D
     s.velocity.resize(size());
     for (std::size_t i = 0; i < size(); ++i) {
         s.position[i] = position_now(i);
-        s.velocity[i] = f_[i].v;
+        s.velocity[i] = v_now(i);
         if (box_.sheared() && inv_mass_[f_[i].species] > 0.0) s.velocity[i][0] -= flow_velocity(i);
     }
     if (images) {
@@ -1067,11 +1143,11 @@ ParticleStore<D> EventEngine<D>::snapshot(std::vector<std::array<std::int32_t, D
 
 template <int D>
 void EventEngine<D>::check_particle_overlap(std::uint32_t i, double rel_tol) const {
-    const Vec<D> xi = f_[i].x + f_[i].v * (now_ - f_[i].t);
+    const Vec<D> xi = x_now(i);
     const std::uint32_t* list = &nbr_[static_cast<std::size_t>(i) * stride_];
     for (std::uint16_t k = 0; k < f_[i].n_nbr; ++k) {
         const std::uint32_t j = list[k];
-        const Vec<D> xj = f_[j].x + f_[j].v * (now_ - f_[j].t);
+        const Vec<D> xj = x_now(j);
         double unused = 0.0;
         const double d = norm(pair_separation(xi - xj, unused));
         const double s = contact_now(i, j);
@@ -1136,8 +1212,9 @@ namespace {
 constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" in memory order
 // 2: one cell list per size class; 3: growth state; 4: the collision virial's
 // off-diagonal components; 5: image counts and the flux moments (version 4 is read with
-// none crossed and no moments); 6: Lees-Edwards shear and the rescaling thermostat
-constexpr std::uint32_t checkpoint_version = 6;
+// none crossed and no moments); 6: Lees-Edwards shear and the rescaling thermostat;
+// 7: gravity, the Andersen thermostat and the white-noise driving
+constexpr std::uint32_t checkpoint_version = 7;
 constexpr std::uint32_t oldest_checkpoint_version = 4;
 } // namespace
 
@@ -1211,6 +1288,13 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, next_rescale_);
     put(out, thermostat_.rescales);
     put(out, thermostat_.energy_removed);
+    for (int a = 0; a < D; ++a) put(out, gravity_[a]);
+    put(out, next_andersen_);
+    put(out, next_kick_);
+    put(out, driving_.andersen_events);
+    put(out, driving_.andersen_energy);
+    put(out, driving_.kicks);
+    put(out, driving_.injected_energy);
 }
 
 template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const EventParams& params) {
@@ -1345,8 +1429,26 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
         e.next_rescale_ = never;
     else if (e.next_rescale_ == never)
         e.next_rescale_ = next_pass_time(e.now_, params.thermostat_interval, "thermostat");
+    Vec<D> gravity{};
+    if (version >= 7) {
+        for (int a = 0; a < D; ++a) get(in, gravity[a]);
+        get(in, e.next_andersen_);
+        get(in, e.next_kick_);
+        get(in, e.driving_.andersen_events);
+        get(in, e.driving_.andersen_energy);
+        get(in, e.driving_.kicks);
+        get(in, e.driving_.injected_energy);
+        if (!(e.next_andersen_ >= e.now_) || !(e.next_kick_ >= e.now_))
+            throw InputError("checkpoint: corrupt driving times");
+    }
+    for (int a = 0; a < D; ++a)
+        if (!(gravity[a] == params.gravity[a]))
+            throw InputError("event.gravity differs from the checkpoint's (the energy it keeps "
+                             "counts the potential energy of its gravity): give the same");
+    e.start_gravity();
     e.ev_.resize(n);
     for (std::size_t i = 0; i < n; ++i) e.ev_[i] = {centres[i], partners[i], counts[i]};
+    e.start_driving();
     e.queue_.build(times);
     return e;
 }

@@ -28,6 +28,7 @@
 #include "pedesis/core/flux_moments.hpp"
 #include "pedesis/core/image_count.hpp"
 #include "pedesis/core/particles.hpp"
+#include "pedesis/core/rng.hpp"
 #include "pedesis/event/event_queue.hpp"
 #include "pedesis/event/flight.hpp"
 #include "pedesis/event/pair_times.hpp"
@@ -62,6 +63,31 @@ struct EventParams {
     // thermostat_temperature. 0: no thermostat.
     double thermostat_temperature = 0.0;
     double thermostat_interval = 0.0;
+    // Uniform gravity, an acceleration (its first D components; zero: none), along walled
+    // axes only: flights are parabolas (event/falling_times.hpp).
+    std::array<double, 3> gravity{};
+    // Andersen thermostat ([event] thermostat = "andersen"): at the times of a Poisson
+    // process of rate andersen_rate per particle (N times that for the system) one particle,
+    // chosen at random, gets a new velocity from the Maxwell-Boltzmann distribution at
+    // andersen_temperature. 0: none.
+    double andersen_rate = 0.0;
+    double andersen_temperature = 0.0;
+    // White-noise driving ([event] driving = "white_noise", van Noije & Ernst): at rate
+    // driving_rate / 2 per particle a random pair of particles receives equal and opposite
+    // momentum kicks dp, each component normal with variance driving_strength m_i m_j, so
+    // that each particle is kicked at driving_rate and, of equal masses, its velocity
+    // changes by driving_strength in variance per component; the momentum is kept. 0: none.
+    double driving_rate = 0.0;
+    double driving_strength = 0.0;
+    std::uint64_t seed = 1; // of the thermostat's and the driving's random numbers
+};
+
+// What the Andersen thermostat and the white-noise driving have done.
+struct DrivingStatus {
+    std::uint64_t andersen_events = 0;
+    double andersen_energy = 0.0; // kinetic energy the redraws added (negative: took)
+    std::uint64_t kicks = 0;      // pair kicks
+    double injected_energy = 0.0; // kinetic energy the kicks added
 };
 
 // What the rescaling thermostat has done, for logs and summaries.
@@ -112,7 +138,18 @@ template <int D> class EventEngine {
     // Under shear they are always kept, of the peculiar velocities, without the heat sums.
     FluxMoments<D> flux_moments() const;
     // Under shear, of the peculiar velocities (v - rate y e_x): the heat, not the flow.
-    double kinetic_energy() const { return box_.sheared() ? peculiar_kinetic_energy() : kinetic_; }
+    // Under gravity, summed afresh (kinetic and potential energy trade in flight).
+    double kinetic_energy() const {
+        if (falling_) [[unlikely]]
+            return falling_kinetic_energy();
+        return box_.sheared() ? peculiar_kinetic_energy() : kinetic_;
+    }
+    // In gravity: -sum m g . (r - r0), r0 the corner of the box that gravity points to
+    // (along each axis, the wall it points to), so that it is the weight times the height
+    // of each centre above the floor(s) and never negative. 0 without gravity.
+    double potential_energy() const;
+    bool falling() const { return falling_; }
+    const DrivingStatus& driving() const { return driving_; }
     std::size_t size() const { return f_.size(); }
     double skin() const { return skin_; }
     // Volume fraction of the particles at the current time (radii grow with growth).
@@ -127,11 +164,9 @@ template <int D> class EventEngine {
     std::array<std::int32_t, D> image_now(std::size_t i) const;
     // Every particle's unwrapped position now, in storage order; one particle's.
     std::vector<Vec<D>> unwrapped_now() const;
-    Vec<D> unwrapped_now(std::size_t i) const {
-        return unwrapped<D>(box_, f_[i].x + f_[i].v * (now_ - f_[i].t), image_[i]);
-    }
+    Vec<D> unwrapped_now(std::size_t i) const { return unwrapped<D>(box_, x_now(i), image_[i]); }
     // Particle i's current velocity (in the laboratory frame).
-    const Vec<D>& velocity(std::size_t i) const { return f_[i].v; }
+    Vec<D> velocity(std::size_t i) const { return v_now(i); }
     // All particles at the current time, wrapped, in storage order; with `images`, their
     // image counts too. Under shear the velocities are the peculiar ones (the soft
     // engine's frames give the same).
@@ -163,6 +198,40 @@ template <int D> class EventEngine {
     static constexpr std::int32_t wall_event_base = -3; // -3 - (2 axis + side)
 
     void setup();
+    // Particle i at now_: its flight carried from its own time (a parabola in gravity).
+    Vec<D> x_now(std::size_t i) const {
+        const double dt = now_ - f_[i].t;
+        if (falling_) [[unlikely]]
+            return f_[i].x + f_[i].v * dt + gravity_ * (0.5 * dt * dt);
+        return f_[i].x + f_[i].v * dt;
+    }
+    Vec<D> v_now(std::size_t i) const {
+        if (falling_) [[unlikely]]
+            return f_[i].v + gravity_ * (now_ - f_[i].t);
+        return f_[i].v;
+    }
+    // In gravity: m |g_a| times the height of x above the floor along each axis (see
+    // potential_energy()).
+    double height_energy(std::size_t species, const Vec<D>& x) const {
+        double u = 0.0;
+        for (int a = 0; a < D; ++a)
+            if (gravity_[a] != 0.0)
+                u -= gravity_[a] * (x[a] - (gravity_[a] < 0.0 ? box_.lo(a) : box_.hi(a)));
+        return u * mass_of(species);
+    }
+    double falling_kinetic_energy() const;
+    void start_gravity();
+    // The Andersen thermostat's and the driving's events (event/event_driving.cpp):
+    // draws(stream, k)'s first number gives the wait before event k, the rest its choices.
+    void start_driving();
+    void stochastic_event();
+    void andersen_event();
+    void kick_event();
+    double next_stochastic_time(RngStream stream, std::uint64_t k, double rate) const;
+    // A particle's velocity set to v at now_ (its flight brought there), with the energy
+    // accounting of a collision; returns the change of its kinetic energy.
+    double set_velocity(std::uint32_t i, const Vec<D>& v);
+    std::uint32_t random_mobile(CounterRng& rng) const;
     // now_ moves to t; under shear the box's offset follows it.
     void set_now(double t) {
         now_ = t;
@@ -242,6 +311,14 @@ template <int D> class EventEngine {
     bool pressure_window_full() const;
     void schedule_growth_step();
     template <bool Growing> double predict_with(std::uint32_t i);
+    double predict_falling(std::uint32_t i);
+    // A prediction's end: i's event is `partner` (its count noted) after `best`, or none.
+    double settle_event(std::uint32_t i, double best, std::int32_t partner) {
+        if (best == never_time) partner = no_event;
+        ev_[i].partner = partner;
+        ev_[i].count = partner >= 0 ? f_[partner].count : 0;
+        return now_ + best;
+    }
     void earliest_listed_lanes(std::uint32_t i, const Vec<D>& xi, const Vec<D>& vi, double ri,
                                double& best, std::int32_t& partner);
 
@@ -260,6 +337,18 @@ template <int D> class EventEngine {
     double shell_ = 0.0; // skin / 2: how far a particle may stray from its centre
     double kinetic_ = 0.0;
     double kinetic_exact_ = 0.0; // kinetic_ when last summed from the velocities
+
+    // gravity (falling_: it is not zero); kinetic_ then holds every particle's kinetic plus
+    // potential energy at its own flight time, which a flight keeps and only collisions,
+    // kicks and redraws change
+    Vec<D> gravity_{};
+    bool falling_ = false;
+    // the Andersen thermostat and the white-noise driving: the next event of each (never
+    // without) and what they have done; mobile_: storage indices of the mobile particles
+    double next_andersen_ = never_time;
+    double next_kick_ = never_time;
+    DrivingStatus driving_;
+    std::vector<std::uint32_t> mobile_;
 
     std::vector<double> radius_;   // per species, at radius_time_
     std::vector<double> inv_mass_; // per species

@@ -28,7 +28,10 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
          inertial},
         {"temperature_<species>", "energy", "kinetic temperature of one species", hard},
         {"potential_energy", "energy",
-         "potential energy of the pair forces, walls and external fields", soft},
+         "potential energy of the pair forces, walls and external fields; event and stepped: "
+         "in [event]/[stepped] gravity, the weight times the height of each centre above the "
+         "wall gravity points to, -sum m g.(r - r0)",
+         "soft, event, stepped"},
         {"gravity_energy", "energy",
          "potential energy in the gravity force: sum of the weight times the height above the "
          "box's centre",
@@ -49,8 +52,12 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
          "instant",
          soft},
         {"total_energy", "energy",
-         "potential plus kinetic energy: constant in NVE up to the integrator's error",
-         "langevin, nve, bussi, nose_hoover"},
+         "potential plus kinetic energy: constant in NVE up to the integrator's error (event "
+         "and stepped: in gravity, constant in elastic runs to rounding)",
+         "langevin, nve, bussi, nose_hoover, event, stepped"},
+        {"injected_energy", "energy",
+         "kinetic energy the white-noise driving ([event] driving) has added since t = 0",
+         "event"},
         {"conserved_energy", "energy",
          "total_energy plus the energy of the thermostat's bath (bussi: minus the kinetic energy "
          "its rescales added; nose_hoover: the chain's kinetic and potential terms): constant "

@@ -19,6 +19,12 @@ inline EventParams event_params(const RunConfig& c) {
     p.growth_max_pressure = c.growth_max_pressure;
     p.thermostat_temperature = c.thermostat_temperature;
     p.thermostat_interval = c.thermostat_interval;
+    for (std::size_t a = 0; a < c.gravity.size() && a < 3; ++a) p.gravity[a] = c.gravity[a];
+    p.andersen_rate = c.andersen_rate;
+    p.andersen_temperature = c.andersen_temperature;
+    p.driving_rate = c.driving_rate;
+    p.driving_strength = c.driving_strength;
+    p.seed = c.seed;
     return p;
 }
 

@@ -16,6 +16,7 @@
 #include "pedesis/setup/build_system.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -127,6 +128,8 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         std::vector<std::string> c = out_.log_columns();
         c.push_back("list_rebuilds");
         if (growing_) c.insert(c.end(), {"packing_fraction", "growth_pressure"});
+        if (engine_->falling()) c.insert(c.end(), {"potential_energy", "total_energy"});
+        if (c_.driving_rate > 0.0) c.push_back("injected_energy");
         return c;
     }
 
@@ -142,6 +145,11 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
                          e.box().sheared() ? &kinetic_integral : nullptr);
         values.push_back(static_cast<double>(e.counters().list_rebuilds));
         if (growing_) values.insert(values.end(), {e.packing_fraction(), e.growth().last_pressure});
+        if (e.falling()) {
+            const double u = e.potential_energy();
+            values.insert(values.end(), {u, u + e.kinetic_energy()});
+        }
+        if (c_.driving_rate > 0.0) values.push_back(e.driving().injected_energy);
         progress(m.temperature, m.pressure, m.has_pressure);
     }
 
@@ -159,6 +167,17 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         if (c_.thermostat_temperature > 0.0)
             console_ << fmt::format("  thermostat: velocities rescaled to T = {:g} every {:g}\n",
                                     c_.thermostat_temperature, c_.thermostat_interval);
+        if (engine_->falling())
+            console_ << fmt::format("  gravity {}: parabolic flights\n",
+                                    fmt::join(c_.gravity, ", "));
+        if (c_.andersen_rate > 0.0)
+            console_ << fmt::format(
+                "  Andersen thermostat: T = {:g}, each particle redrawn at rate {:g}\n",
+                c_.andersen_temperature, c_.andersen_rate);
+        if (c_.driving_rate > 0.0)
+            console_ << fmt::format("  white-noise driving: each particle kicked at rate {:g}, "
+                                    "velocity variance {:g} per component and kick\n",
+                                    c_.driving_rate, c_.driving_strength);
         wall_start_ = std::chrono::steady_clock::now();
         collisions_start_ = engine_->counters().pair_collisions;
     }
@@ -175,6 +194,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
                                {"interval", c_.thermostat_interval},
                                {"rescales", e.thermostat().rescales},
                                {"energy_removed", e.thermostat().energy_removed}};
+        driving_summary(j);
         if (growing_) {
             const auto& g = e.growth();
             j["growth"] = {{"growing", g.growing},
@@ -224,6 +244,27 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
     }
 
   private:
+    void driving_summary(nlohmann::json& j) const {
+        const auto& e = *engine_;
+        if (e.falling())
+            j["gravity"] = {{"acceleration", c_.gravity},
+                            {"potential_energy", e.potential_energy()},
+                            {"total_energy", e.potential_energy() + e.kinetic_energy()}};
+        const auto& d = e.driving();
+        if (c_.andersen_rate > 0.0)
+            j["andersen"] = {{"temperature", c_.andersen_temperature},
+                             {"rate", c_.andersen_rate},
+                             {"events", d.andersen_events},
+                             {"energy_added", d.andersen_energy}};
+        if (c_.driving_rate > 0.0)
+            j["driving"] = {{"kind", "white_noise"},
+                            {"rate", c_.driving_rate},
+                            {"strength", c_.driving_strength},
+                            {"kicks", d.kicks},
+                            {"injected_energy", d.injected_energy},
+                            {"injected_power", e.time() > 0 ? d.injected_energy / e.time() : 0.0}};
+    }
+
     double msd() const {
         return mean_squared_displacement(engine_->lazy_particles(), engine_->unwrapped_now(),
                                          record_.start);

@@ -7,6 +7,7 @@
 #include "pedesis/io/config_table.hpp"
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/quantities.hpp"
+#include "pedesis/setup/hard_driving_config.hpp"
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/setup/minimize_config.hpp"
 #include "pedesis/setup/velocities.hpp"
@@ -253,9 +254,10 @@ void read_event_thermostat(ConfigTable& ev, RunConfig& c) {
         return;
     }
     c.thermostat_where = ev.where("thermostat");
+    if (*kind == "andersen") return read_andersen(ev, c);
     if (*kind != "rescale")
         throw InputError(c.thermostat_where + ": unknown thermostat '" + *kind +
-                         "' (the event engine has \"rescale\")");
+                         "' (the event engine has \"rescale\" and \"andersen\")");
     if (!ev.has("temperature"))
         throw InputError(c.thermostat_where + ": needs event.temperature (the temperature held)");
     c.thermostat_temperature = ev.number("temperature", 0.0);
@@ -313,6 +315,8 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
         for (const char* key : {"growth_packing_fraction", "growth_max_pressure"})
             if (ev->has(key) && c.growth_rate == 0)
                 throw InputError(ev->where(key) + ": needs event.growth_rate > 0");
+        read_gravity(*ev, c);
+        read_driving(*ev, c);
         read_event_thermostat(*ev, c);
         ev->finish();
     }
@@ -348,6 +352,10 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
         throw InputError(c.file + ": [run] needs at least one of " + stops);
     run->finish();
 
+    if (!c.gravity.empty() && c.stop_energy_fraction)
+        throw InputError(run->where("energy_fraction") +
+                         ": under gravity kinetic and potential energy trade; stop on run.time "
+                         "or run.collisions_per_particle");
     if (c.shear_rate > 0.0) {
         if (c.growth_rate > 0.0)
             throw InputError(c.shear_where + ": growth (event.growth_rate) and Lees–Edwards shear "

@@ -70,6 +70,11 @@ struct RunConfig {
     double thermostat_temperature = 0.0;
     double thermostat_interval = 0.0;
     std::string thermostat_where; // of event.thermostat, for messages
+    // [event] gravity (also [stepped] gravity; empty: none), thermostat = "andersen" and
+    // driving = "white_noise" (setup/hard_driving_config.hpp; the meanings: EventParams)
+    std::vector<double> gravity;
+    double andersen_rate = 0.0, andersen_temperature = 0.0;
+    double driving_rate = 0.0, driving_strength = 0.0;
 
     // [stepped] (dynamics = stepped): the time step is `dt` below, the other keys of [run]
     // and [output] are the event engine's, and [run] steps is a stop condition too
