@@ -13,7 +13,8 @@ from .recording import Recording
 __all__ = [
     "System", "Evolver", "Dump", "Gas", "Plugin", "InputError", "RunError",
     "HarmonicForce", "WcaForce", "LjForce", "SelfPropulsion", "PolarAlign", "BrownianIntegrator",
-    "BrownianRotIntegrator", "LangevinIntegrator", "NVEIntegrator", "Wall",
+    "BrownianRotIntegrator", "LangevinIntegrator", "NVEIntegrator", "BussiIntegrator",
+    "NoseHooverIntegrator", "Wall",
     "Gravity", "HarmonicTrap", "ActiveOU",
     "ActiveTorque", "RunAndTumble", "NematicAlign", "VelocityAlign",
     "Simulation", "Periodic", "GSDWriter", "XYZWriter", "Callback", "StopName", "Recording",

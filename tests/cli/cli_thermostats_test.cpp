@@ -108,7 +108,8 @@ TEST_F(Thermostats, ConservedEnergyIsLoggedForThermostatsOnlyAndStaysFlat) {
             exchanged = std::max(exchanged, std::abs(e[k] - e[0]));
         }
         EXPECT_GT(exchanged, 20.0) << thermostat;
-        EXPECT_LT(moved, 0.01 * exchanged) << thermostat << ": moved " << moved << " of " << exchanged;
+        EXPECT_LT(moved, 0.01 * exchanged)
+            << thermostat << ": moved " << moved << " of " << exchanged;
     }
     write("nve.toml", config("nve", 50, ""));
     const auto r = run_pedesis("run nve.toml --out nve", dir, 60);
@@ -134,6 +135,16 @@ TEST_F(Thermostats, BadParametersAreRefused) {
     std::string mixed = config("bussi", 10);
     mixed = std::regex_replace(mixed, std::regex("name = \"bussi\""), "name = \"nose_hoover\"");
     expect_rejected(mixed, {"dynamics", "'bussi'", "'nose_hoover'"});
+}
+
+TEST_F(Thermostats, ABlowUpNamesTheThermostat) {
+    // T = 1e6 (mean speed ~1000) moves the particles far beyond the skin in a step
+    for (const std::string thermostat : {"bussi", "nose_hoover"}) {
+        write("boom.toml", config(thermostat, 50, "T = 1e6\ntau = 0.01"));
+        const auto r = run_pedesis("run boom.toml --out " + thermostat, dir, 60);
+        EXPECT_EQ(r.exit_code, 3) << r.output;
+        EXPECT_NE(r.output.find(thermostat + ": at step"), std::string::npos) << r.output;
+    }
 }
 
 TEST_F(Thermostats, ARestartWithAnotherChainLengthIsRefused) {

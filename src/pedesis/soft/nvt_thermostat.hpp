@@ -65,7 +65,7 @@ ThermalKinetics<D> measure_thermal(const SoftState<D>& s, const std::array<bool,
 template <int D> class NvtThermostat : public Integrator<D> {
   public:
     NvtThermostat(const std::string& name, double T, double tau, bool zero_T_allowed)
-        : T_(T), tau_(tau) {
+        : T_(T), tau_(tau), verlet_(name) {
         if (!(std::isfinite(T) && (zero_T_allowed ? T >= 0.0 : T > 0.0)))
             throw InputError(name + ": T must be a finite number " +
                              (zero_T_allowed ? ">= 0" : "> 0"));

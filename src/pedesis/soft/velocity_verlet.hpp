@@ -17,13 +17,17 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace pedesis {
 
 template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
   public:
-    std::string name() const override { return "nve"; }
+    // (a thermostat that steps with it gives its own name, for the messages)
+    explicit VelocityVerletIntegrator(std::string name = "nve") : name_(std::move(name)) {}
+    std::string name() const override { return name_; }
     bool needs_initial_forces() const override { return true; }
 
     void prestep(SoftState<D>& s, double dt, double max_move) override {
@@ -89,6 +93,7 @@ template <int D> class VelocityVerletIntegrator final : public Integrator<D> {
         tabulate(s.p.species_table, dt, kick_, drift_);
     }
 
+    std::string name_;
     std::vector<double> kick_, drift_;
 };
 
