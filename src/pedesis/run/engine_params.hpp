@@ -32,6 +32,7 @@ inline SteppedParams stepped_params(const RunConfig& c) {
     SteppedParams p;
     p.dt = c.dt;
     p.max_move = c.max_move;
+    for (std::size_t a = 0; a < c.gravity.size() && a < 3; ++a) p.gravity[a] = c.gravity[a];
     return p;
 }
 

@@ -129,6 +129,7 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
     std::vector<std::string> log_columns() const override {
         std::vector<std::string> c = out_.log_columns();
         c.insert(c.end(), {"step", "v_rms", "mean_speed", "pressure_running"});
+        if (engine_->falling()) c.insert(c.end(), {"potential_energy", "total_energy"});
         return c;
     }
 
@@ -160,6 +161,10 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
                                     all_walls(e.box()) ? "Wall Pressure" : "Pressure",
                                     e.time() > 0 ? fmt::format("{:.6g}", P_run) : "-");
         values.insert(values.end(), {static_cast<double>(e.steps()), v_rms, sum_v / mobile, P_run});
+        if (e.falling()) {
+            const double u = e.potential_energy();
+            values.insert(values.end(), {u, u + e.kinetic_energy()});
+        }
     }
 
     void start(bool /*fresh*/) override {
@@ -197,6 +202,10 @@ template <int D> class SteppedRunEngine final : public HardRunEngine<D> {
             C ? static_cast<double>(e.stats().late_collisions) / static_cast<double>(C) : 0.0;
         j["chained_events"] = e.stats().chained_events;
         j["most_events_in_step"] = e.stats().most_events_in_step;
+        if (e.falling())
+            j["gravity"] = {{"acceleration", c_.gravity},
+                            {"potential_energy", e.potential_energy()},
+                            {"total_energy", e.potential_energy() + e.kinetic_energy()}};
         if (e.box().sheared()) j["shear"] = record_.shear.summary(e.box().shear_rate());
         return j;
     }

@@ -234,6 +234,7 @@ void read_stepped_section(ConfigTable& root, RunConfig& c) {
     if (!(c.max_move > 0 && c.max_move <= 1))
         throw InputError(st->where("max_move") +
                          ": must lie in (0, 1] (a fraction of the particle's radius)");
+    read_gravity(*st, c);
     st->finish();
 }
 

@@ -4,6 +4,7 @@
 #include "pedesis/core/particle_checks.hpp"
 #include "pedesis/core/stage.hpp"
 #include "pedesis/event/collision_rules.hpp"
+#include "pedesis/event/falling_times.hpp"
 #include "pedesis/io/binary_stream.hpp"
 #include "pedesis/stepped/rewind.hpp"
 #include "pedesis/stepped/time_step.hpp"
@@ -88,7 +89,48 @@ SteppedEngine<D>::SteppedEngine(ParticleStore<D> particles, const Box<D>& box,
     if (box_.sheared()) track_flux_moments(); // the exact kinetic stress of the log's P_xy
 }
 
+// As the event engine's (event/event_driving.cpp): along walled axes only, and not with
+// shear, fixed obstacles (which do not fall: pair flights relative to them would not be
+// straight) or [transport].
+template <int D> void SteppedEngine<D>::start_gravity() {
+    falling_ = false;
+    for (int a = 0; a < D; ++a) {
+        gravity_[a] = params_.gravity[a];
+        if (!(std::abs(gravity_[a]) <= 1e100))
+            throw InputError("stepped.gravity must be finite numbers");
+        if (gravity_[a] == 0.0) continue;
+        falling_ = true;
+        if (box_.periodic(a))
+            throw InputError(fmt::format(
+                "stepped.gravity: component {:g} along axis {} which is periodic: particles "
+                "would fall for ever (no stationary state); make that axis a wall or give 0",
+                gravity_[a], a));
+    }
+    if (!falling_) return;
+    if (box_.sheared())
+        throw InputError("stepped.gravity: not with Lees-Edwards shear ([box] shear_rate)");
+    for (const auto& s : p_.species_table)
+        if (std::isinf(s.mass))
+            throw InputError("stepped.gravity: fixed obstacles (mass = inf) do not fall; not with "
+                             "gravity");
+}
+
+template <int D> double SteppedEngine<D>::potential_energy() const {
+    if (!falling_) return 0.0;
+    double u = 0.0;
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+        double h = 0.0;
+        for (int a = 0; a < D; ++a)
+            if (gravity_[a] != 0.0)
+                h -= gravity_[a] *
+                     (p_.position[i][a] - (gravity_[a] < 0.0 ? box_.lo(a) : box_.hi(a)));
+        u += h / inv_mass_[p_.species[i]];
+    }
+    return u;
+}
+
 template <int D> void SteppedEngine<D>::setup() {
+    start_gravity();
     radius_.clear();
     inv_mass_.clear();
     max_speed2_.clear();
@@ -187,7 +229,12 @@ template <int D> void SteppedEngine<D>::step() {
         box_.shear_to_time(time_base_ + static_cast<double>(step_ + 1 - step_base_) * dt_);
     peculiar_fresh_ = false;
     for (std::uint32_t i = 0; i < n; ++i) {
-        p_.position[i] += p_.velocity[i] * dt_;
+        if (falling_) [[unlikely]] {
+            p_.position[i] += p_.velocity[i] * dt_ + gravity_ * (0.5 * dt_ * dt_);
+            p_.velocity[i] += gravity_ * dt_;
+        } else {
+            p_.position[i] += p_.velocity[i] * dt_;
+        }
         if (any_periodic_) wrap_particle(i);
         segment_start_[i] = 0.0;
         events_[i] = 0;
@@ -240,11 +287,24 @@ template <int D> void SteppedEngine<D>::find_wall_crossing(std::uint32_t i) {
         } else {
             continue;
         }
-        if (side == 1 ? !(v > 0.0) : !(v < 0.0)) {
-            x = side == 1 ? hi : lo;
-            continue;
+        double back; // how long before the step's end the centre crossed the plane
+        if (gravity_[a] != 0.0) [[unlikely]] {
+            // going back along the parabola, the outward distance overshoot - v_out tau +
+            // g_out tau^2 / 2 first closes at the crossing (none in the segment: rounding)
+            const double out = side == 1 ? 1.0 : -1.0;
+            back = falling_gap_time(overshoot, -out * v, out * gravity_[a]);
+            if (!(back <= dt_ - segment_start_[i])) {
+                x = side == 1 ? hi : lo;
+                continue;
+            }
+        } else {
+            if (side == 1 ? !(v > 0.0) : !(v < 0.0)) {
+                x = side == 1 ? hi : lo;
+                continue;
+            }
+            back = overshoot / std::abs(v);
         }
-        const double when = std::max(segment_start_[i], dt_ - overshoot / std::abs(v));
+        const double when = std::max(segment_start_[i], dt_ - back);
         if (when < best.when) {
             best.when = when;
             best.wall = 2 * a + side;
@@ -359,6 +419,8 @@ template <int D> void SteppedEngine<D>::collide(const Event& e) {
 
 template <int D> void SteppedEngine<D>::track_flux_moments() {
     if (moments_on_) return;
+    if (falling_)
+        throw InputError("[transport] needs force-free flights: not with stepped.gravity");
     moments_ = FluxMoments<D>{};
     moments_.t = time();
     const ParticleStore<D>& p = particles(); // (peculiar under shear)
@@ -381,11 +443,26 @@ template <int D> void SteppedEngine<D>::bounce(const Event& e) {
     const int a = e.wall / 2, side = e.wall % 2;
     const double r = radius_[p_.species[i]];
     double& x = p_.position[i][a];
+    const double im = inv_mass_[p_.species[i]];
+    if (gravity_[a] != 0.0) [[unlikely]] {
+        // the velocity at the bounce reversed, and the parabola from the plane to the end
+        const double back = dt_ - e.when;
+        double& v = p_.velocity[i][a];
+        v -= gravity_[a] * back;
+        counters_.wall_impulse[a][side] += collide_wall(v, 1.0 / im, 1.0);
+        x = (side == 1 ? box_.hi(a) - r : box_.lo(a) + r) + v * back +
+            0.5 * gravity_[a] * back * back;
+        v += gravity_[a] * back;
+        ++counters_.wall_collisions;
+        moved(i, e.when);
+        find_wall_crossing(i);
+        find_overlaps_of(i, i);
+        return;
+    }
     if (side == 1)
         x = 2.0 * (box_.hi(a) - r) - x;
     else
         x = 2.0 * (box_.lo(a) + r) - x;
-    const double im = inv_mass_[p_.species[i]];
     // under shear (walls on z only) the kinetic sums see the bounce
     Vec<D> c0 = p_.velocity[i];
     const bool recount = moments_on_ && box_.sheared();

@@ -60,6 +60,10 @@ struct SteppedParams {
     double dt = 0.0;
     double max_move = 0.5; // largest distance moved in one step, in units of the own radius
     std::uint32_t max_events_per_step = 64; // per particle (pairs and walls); more stops the run
+    // Uniform gravity, an acceleration (its first D components; zero: none), along walled
+    // axes only. Each segment is a parabola; pairs fall alike, so their relative motion, and
+    // the rewind, stay straight; a wall crossing is the root of a quadratic.
+    std::array<double, 3> gravity{};
 };
 
 // Diagnostics of the approximation, since the engine was created (or restored).
@@ -109,6 +113,10 @@ template <int D> class SteppedEngine {
     std::size_t size() const { return p_.size(); }
     // Under shear, of the peculiar velocities: the heat, not the flow.
     double kinetic_energy() const;
+    // In gravity, -sum m g . (r - r0), r0 the corner of the box that gravity points to (the
+    // weight times each centre's height above the floor); 0 without.
+    double potential_energy() const;
+    bool falling() const { return falling_; }
 
     // Throws if two particles overlap by more than rel_tol of their contact distance:
     // InputError before the first step (a bad initial state), RunError after.
@@ -202,6 +210,9 @@ template <int D> class SteppedEngine {
     std::vector<Event> heap_;
     std::array<bool, D> walled_{};
     bool any_periodic_ = false;
+    Vec<D> gravity_{};
+    bool falling_ = false;
+    void start_gravity();
 
     CellList<D> cells_;
     EventCounters<D> counters_;
