@@ -15,6 +15,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <ostream>
@@ -32,8 +34,8 @@ template <int D> class SoftMinimization {
         const std::string head = c.file + ": dynamics = \"minimize\"";
         if (o.restart)
             throw InputError(head + " does not continue from a checkpoint (--restart, --resume): "
-                                    "start a new run from its final frame, [initial] file = "
-                                    "\"DIR/trajectory.gsd\"");
+                                    "start a new run from its final frame ([initial] file = a "
+                                    "GSD or XYZ trajectory of it)");
         if (o.comm && o.comm->size() > 1)
             throw InputError(head + " runs on one process: start it without mpirun");
         if (on_gpu) throw InputError(head + " runs on the CPU: remove device = \"gpu\"");
@@ -90,12 +92,13 @@ template <int D> class SoftMinimization {
     }
 
     // The console's line on how the minimisation ended.
-    void print_end(std::ostream& out, const nlohmann::json& j) const {
+    void print_end(std::ostream& out, const nlohmann::json& j,
+                   const std::filesystem::path& out_dir) const {
         const auto step = j["steps"].template get<std::uint64_t>();
         const double f = fire_->max_force();
         const double tol = fire_->params().force_tolerance;
         if (stop_ && std::string(stop_) == "force_tolerance")
-            out << fmt::format("  minimised (FIRE) at step {}: largest force {:.3g} < "
+            out << fmt::format("  minimised (FIRE) at step {}: largest force {:.4g} < "
                                "force_tolerance {:g}\n",
                                step, f, tol);
         else if (stop_)
@@ -105,9 +108,8 @@ template <int D> class SoftMinimization {
         else if (j["stopped_by"] == "steps")
             out << fmt::format("  not minimised: run.steps = {} reached with the largest force "
                                "{:.3g} above force_tolerance {:g}; raise run.steps, or go on "
-                               "from the final frame ([initial] file = "
-                               "\"DIR/trajectory.gsd\")\n",
-                               c_.steps, f, tol);
+                               "from the final frame ({})\n",
+                               c_.steps, f, tol, final_frame_hint(out_dir));
     }
 
     std::string progress() const {
@@ -115,6 +117,15 @@ template <int D> class SoftMinimization {
     }
 
   private:
+    // Where the run's final frame is, as [initial] takes it.
+    std::string final_frame_hint(const std::filesystem::path& out_dir) const {
+        for (const char* format : {"gsd", "xyz"})
+            if (std::find(c_.formats.begin(), c_.formats.end(), format) != c_.formats.end())
+                return fmt::format("[initial] file = \"{}\"",
+                                   (out_dir / (std::string("trajectory.") + format)).string());
+        return "add \"gsd\" to [output] formats to keep it";
+    }
+
     const RunConfig& c_;
     FireMinimizer<D>* fire_ = nullptr; // (the evolver owns it)
     const char* stop_ = nullptr;

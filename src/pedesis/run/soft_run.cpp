@@ -416,7 +416,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                                  j["mean_temperature"].template get<double>()));
             print_transport(console_, j["transport"]);
         }
-        if (minimize_) minimize_->print_end(console_, j);
+        if (minimize_) minimize_->print_end(console_, j, o_.out_dir);
         console_ << fmt::format("  outputs            {}\n", o_.out_dir.string());
     }
 
