@@ -43,21 +43,6 @@ std::string abp_config(int dimension, int steps, double alpha = 1.0, int count =
                        dimension, length, count, alpha, steps);
 }
 
-// The largest distance between the same particle in the last frames of two runs.
-double largest_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
-    const XyzReader ra(a), rb(b);
-    EXPECT_EQ(ra.frames(), rb.frames());
-    double worst = 0.0;
-    for (std::size_t k = 0; k < std::min(ra.frames(), rb.frames()); ++k) {
-        const XyzFrame fa = ra.frame(k), fb = rb.frame(k);
-        EXPECT_EQ(fa.size(), fb.size());
-        for (std::size_t i = 0; i < std::min(fa.size(), fb.size()); ++i)
-            for (int c = 0; c < 3; ++c)
-                worst = std::max(worst, std::abs(fa.position[i][c] - fb.position[i][c]));
-    }
-    return worst;
-}
-
 std::size_t occurrences(const std::string& text, const std::string& what) {
     std::size_t n = 0;
     for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;

@@ -632,19 +632,15 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     // active_ou's force is gamma p with the position integrator's friction, and its active
     // velocities stay on one process: both refused at set-up rather than at the first step.
-    // An NVT thermostat (bussi, nose_hoover) measures the temperature as the log does, and
-    // sums the kinetic energy over the particles of one process.
+    // An NVT thermostat (bussi, nose_hoover) measures the temperature as the log does
+    // (under a decomposition it sums over the processes: Evolver::set_domain).
     void check_thermostat() {
         thermostat_ = nullptr;
         for (const auto& i : evolver_->integrators())
             if (!std::isnan(i->bath_energy())) thermostat_ = i.get();
-        if (!thermostat_) return;
-        thermostat_->set_conserved_momentum(
-            conserved_momentum_axes(state_.p, state_.box, momentum_));
-        if (o_.comm && o_.comm->size() > 1)
-            throw InputError(c_.file + ": the " + thermostat_->name() +
-                             " thermostat runs on one process: it rescales by the kinetic "
-                             "energy of the whole system; start it without mpirun");
+        if (thermostat_)
+            thermostat_->set_conserved_momentum(
+                conserved_momentum_axes(state_.p, state_.box, momentum_));
     }
 
     void check_active_ou() const {

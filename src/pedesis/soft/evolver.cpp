@@ -37,6 +37,7 @@ template <int D> void Evolver<D>::add_torque(std::unique_ptr<TorqueTerm<D>> t) {
 }
 
 template <int D> void Evolver<D>::add_integrator(std::unique_ptr<Integrator<D>> i) {
+    if (domain_) i->set_communicator(&domain_->comm());
     integrators_.push_back(std::move(i));
 }
 
@@ -301,6 +302,7 @@ template <int D> void Evolver<D>::sync_host() {
 template <int D> void Evolver<D>::set_domain(DomainDecomposition<D>* domain) {
     domain_ = domain;
     nl_.reset(); // its cells cover another region now
+    for (auto& i : integrators_) i->set_communicator(domain ? &domain->comm() : nullptr);
 }
 
 template <int D> void Evolver<D>::build_local() {

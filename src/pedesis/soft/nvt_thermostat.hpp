@@ -13,9 +13,12 @@
 // keeps the total momentum. Particles of infinite mass are left alone.
 //
 // The sums run serially in storage order: the same numbers for every thread count (and a
-// checkpoint keeps the order). They cost two passes over the particles per half-step,
-// small beside the forces. One process only (the sums would need every process's share).
+// checkpoint keeps the order). They cost a pass over the particles per half-step, and
+// the rescale another, small beside the forces. Under a domain decomposition the sums
+// are added up over the processes (set_communicator), and every process draws the same
+// random numbers and keeps the same bath variables.
 #include "pedesis/core/chunk_shares.hpp"
+#include "pedesis/core/communicator.hpp"
 #include "pedesis/core/error.hpp"
 #include "pedesis/soft/plugins.hpp"
 #include "pedesis/soft/velocity_verlet.hpp"
@@ -23,6 +26,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,19 +39,25 @@ template <int D> struct ThermalKinetics {
     Vec<D> centre{};      // V: the centre-of-mass velocity along conserved axes, else 0
 };
 
+// From the owned particles; with `comm`, of every process's (collective).
 template <int D>
-ThermalKinetics<D> measure_thermal(const SoftState<D>& s, const std::array<bool, D>& conserved) {
-    double kinetic = 0.0, mass = 0.0, mobile = 0.0;
-    Vec<D> momentum{};
+ThermalKinetics<D> measure_thermal(const SoftState<D>& s, const std::array<bool, D>& conserved,
+                                   Communicator* comm = nullptr) {
+    // K, M, N_mobile, P
+    std::array<double, 3 + D> sums{};
     const std::size_t n = s.owned();
     for (std::size_t i = 0; i < n; ++i) {
         const double m = s.p.mass(i);
         if (std::isinf(m)) continue;
-        kinetic += 0.5 * m * norm2(s.p.velocity[i]);
-        momentum += m * s.p.velocity[i];
-        mass += m;
-        mobile += 1.0;
+        sums[0] += 0.5 * m * norm2(s.p.velocity[i]);
+        sums[1] += m;
+        sums[2] += 1.0;
+        for (int a = 0; a < D; ++a) sums[3 + a] += m * s.p.velocity[i][a];
     }
+    if (comm) comm->sum(std::span<double>(sums));
+    const double kinetic = sums[0], mass = sums[1], mobile = sums[2];
+    Vec<D> momentum{};
+    for (int a = 0; a < D; ++a) momentum[a] = sums[3 + a];
     ThermalKinetics<D> k;
     k.energy = kinetic;
     int c = 0;
@@ -75,6 +85,7 @@ template <int D> class NvtThermostat : public Integrator<D> {
     bool needs_initial_forces() const override { return true; }
     double bath_temperature(std::size_t, std::size_t) const override { return T_; }
     void set_conserved_momentum(const std::array<bool, D>& axes) override { conserved_ = axes; }
+    void set_communicator(Communicator* comm) override { comm_ = comm; }
     double temperature() const { return T_; }
     double tau() const { return tau_; }
 
@@ -97,7 +108,7 @@ template <int D> class NvtThermostat : public Integrator<D> {
 
   private:
     void half_step(SoftState<D>& s, double h, int half) {
-        const ThermalKinetics<D> k = measure_thermal<D>(s, conserved_);
+        const ThermalKinetics<D> k = measure_thermal<D>(s, conserved_, comm_);
         const double alpha = rescale_factor(k, h, s.step, half);
         if (alpha == 1.0) return;
         const Vec<D> centre = k.centre;
@@ -112,6 +123,7 @@ template <int D> class NvtThermostat : public Integrator<D> {
     }
 
     std::array<bool, D> conserved_{};
+    Communicator* comm_ = nullptr;
     VelocityVerletIntegrator<D> verlet_;
 };
 

@@ -13,6 +13,8 @@
 
 namespace pedesis {
 
+class Communicator;
+
 // Totals that only logging needs: computed on request, serially, so that they are
 // reproducible and cost nothing on ordinary steps.
 struct PairTotals {
@@ -133,6 +135,10 @@ template <int D> class Integrator {
     // a thermostat counts degrees of freedom and measures the temperature as the log does
     // (none unless told).
     virtual void set_conserved_momentum(const std::array<bool, D>& /*axes*/) {}
+    // Under a domain decomposition, the processes whose particles together make the
+    // system (null on one process): a thermostat sums its kinetic energy over them, in
+    // every pre- and post-step (collective then).
+    virtual void set_communicator(Communicator* /*comm*/) {}
 };
 
 } // namespace pedesis
