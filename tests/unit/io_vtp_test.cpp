@@ -157,9 +157,14 @@ template <int D> void check_document(const std::string& doc, const SoftState<D>&
         EXPECT_EQ(piece.attr(none), "0") << none;
 
     const auto time = poly.one("FieldData").all("DataArray");
-    ASSERT_EQ(time.size(), 1u);
+    ASSERT_EQ(time.size(), 2u);
     EXPECT_EQ(time[0]->attr("Name"), "TimeValue");
     EXPECT_EQ(numbers(time[0]->text), std::vector<double>{s.time});
+    // the frame's own box (a barostat changes it from frame to frame)
+    EXPECT_EQ(time[1]->attr("Name"), "BoxLengths");
+    std::vector<double> lengths(3, 0.0);
+    for (int a = 0; a < D; ++a) lengths[static_cast<std::size_t>(a)] = s.box.length(a);
+    EXPECT_EQ(numbers(time[1]->text), lengths);
 
     std::vector<std::uint32_t> storage(n);
     for (std::size_t i = 0; i < n; ++i) storage[s.p.tag[i]] = static_cast<std::uint32_t>(i);

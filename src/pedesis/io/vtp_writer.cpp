@@ -62,6 +62,13 @@ template <int D> std::string vtp_document(const Frame<D>& s) {
                    "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" "
                    "format=\"ascii\">{}</DataArray>\n",
                    s.time);
+    // The box of this frame (a barostat changes it): its lengths, z = 0 in 2D.
+    std::array<double, 3> box{0.0, 0.0, 0.0};
+    for (int a = 0; a < D; ++a) box[static_cast<std::size_t>(a)] = s.box.length(a);
+    fmt::format_to(out,
+                   "      <DataArray type=\"Float64\" Name=\"BoxLengths\" NumberOfTuples=\"1\" "
+                   "NumberOfComponents=\"3\" format=\"ascii\">{} {} {}</DataArray>\n",
+                   box[0], box[1], box[2]);
     fmt::format_to(out, "    </FieldData>\n");
     fmt::format_to(out,
                    "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" "

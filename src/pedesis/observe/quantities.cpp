@@ -60,9 +60,10 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
          "event"},
         {"conserved_energy", "energy",
          "total_energy plus the energy of the thermostat's bath (bussi: minus the kinetic energy "
-         "its rescales added; nose_hoover: the chain's kinetic and potential terms): constant "
-         "up to the integrator's error",
-         "bussi, nose_hoover"},
+         "its rescales added; nose_hoover: the chain's kinetic and potential terms; nve with "
+         "[barostat]: P V plus the barostat's kinetic energy): constant up to the integrator's "
+         "error",
+         "bussi, nose_hoover, nve with [barostat]"},
         {"pressure", "energy / volume",
          "pressure P; hard particles: averaged over the interval since the previous row "
          "(walls on walled axes, collision virial on periodic ones); soft: at the instant, "
@@ -76,6 +77,8 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
         {"mean_free_time", "time", "N_mobile t / (2 collisions): mean time between collisions",
          hard, !count, may_be_infinite},
         {"list_rebuilds", "1", "neighbour-list builds so far", "event, soft", count},
+        {"volume", "volume", "the box's volume (area in 2D), which [barostat] changes",
+         "langevin, nve with [barostat]"},
         {"max_force", "energy / length",
          "largest force on a particle, max_i |F_i|: what [minimize] force_tolerance stops on",
          "minimize"},

@@ -19,8 +19,9 @@ namespace {
 
 // 3: the run's summed temperature; 4: active_ou's active velocities; 5: Lees-Edwards
 // shear (the rate, the box's offset and the list's, the velocity profile and P_xy series)
-// and the [transport] measurement; 6: the integrators' own state (a thermostat's), by name
-constexpr std::uint32_t soft_checkpoint_version = 6;
+// and the [transport] measurement; 6: the integrators' own state (a thermostat's), by name;
+// 7: the box of the list's last build (a barostat changes the box)
+constexpr std::uint32_t soft_checkpoint_version = 7;
 
 // The state's arrays in checkpoint order; one list serves saving and loading.
 template <class State, class F> void for_each_array(State& s, F&& f) {
@@ -69,6 +70,8 @@ void save_soft_checkpoint(const std::filesystem::path& path, const SoftState<D>&
         binary::put(out, i->name());
         binary::put(out, i->saved_state());
     }
+    // the box of the list's build, which a barostat's box has left since
+    binary::put(out, evolver.list_box_lengths());
     file.commit();
 }
 
@@ -136,6 +139,8 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
             for (const auto& i : evolver.integrators())
                 if (i->name() == name) i->restore_state(saved);
         }
+        std::vector<double> list_lengths;
+        if (version >= 7) binary::get(in, list_lengths);
         file.finish();
         if (book.shear.velocity_sum.size() != book.shear.count.size())
             throw InputError("file is corrupt (velocity profile lengths differ)");
@@ -176,10 +181,10 @@ void load_soft_checkpoint(const std::filesystem::path& path, const RunConfig& c,
         }
         if (!c.box_lengths.empty())
             for (int a = 0; a < D; ++a)
-                if (s.box.length(a) != c.box_lengths[static_cast<std::size_t>(a)])
+                if (!c.barostat.on && s.box.length(a) != c.box_lengths[static_cast<std::size_t>(a)])
                     throw InputError("box does not match " + c.file);
         try {
-            evolver.restore_list(reference, builds, list_offset);
+            evolver.restore_list(reference, builds, list_offset, list_lengths);
         } catch (const RunError& e) {
             // the list's positions come from the file: a bad one is a corrupt file (exit 2)
             throw InputError(std::string("corrupt neighbour-list state: ") + e.what());

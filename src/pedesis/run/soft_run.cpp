@@ -14,8 +14,10 @@
 #include "pedesis/setup/build_soft_state.hpp"
 #include "pedesis/setup/build_system.hpp"
 #include "pedesis/soft/active_ou.hpp"
+#include "pedesis/soft/barostat.hpp"
 #include "pedesis/soft/brownian.hpp"
 #include "pedesis/soft/domain_decomposition.hpp"
+#include "pedesis/soft/integrator_set.hpp"
 #include "pedesis/soft/langevin.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
 #include "pedesis/soft/polar_align.hpp"
@@ -112,7 +114,15 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         evolver_ = std::make_unique<Evolver<D>>(state_, c_.list_skin, c_.list_r_cut);
         evolver_->set_sort_interval(c_.sort_every);
         for (const auto* list : {&c_.forces, &c_.torques, &c_.integrators})
-            for (const auto& spec : *list) add_plugin(*evolver_, spec, table, c_.seed);
+            for (const auto& spec : *list) {
+                if (c_.barostat.on && list == &c_.integrators && moves_positions(spec))
+                    evolver_->add_integrator(
+                        make_mtk_integrator<D>(c_.barostat, spec, table, c_.seed, [this] {
+                            return evolver_->pair_totals().virial_tensor;
+                        }));
+                else
+                    add_plugin(*evolver_, spec, table, c_.seed);
+            }
         if (c_.dynamics == "minimize") minimize_.emplace(c_, state_, *evolver_);
         // (under MPI the list is built after the decomposition, on each process's share)
         if (!o_.restart && !(o_.comm && o_.comm->size() > 1))
@@ -130,6 +140,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
                 book_.start[state_.p.tag[i]] = state_.unwrapped(i);
         }
         check_walls(); // (a restored state has its box from here on)
+        check_barostat();
         check_active_ou();
         check_thermostat();
         check_shear();
@@ -244,6 +255,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         for (int slot : sym_slots<D>()) c.push_back(std::string("pressure_") + sym_suffix(slot));
         for (const auto& f : evolver_->forces())
             for (std::string& name : f->log_columns(state_)) c.push_back(std::move(name));
+        if (c_.barostat.on) c.push_back("volume");
         if (minimize_)
             for (std::string& name : SoftMinimization<D>::log_columns())
                 c.push_back(std::move(name));
@@ -268,6 +280,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             values.push_back(m.ideal_tensor[slot] + pair.virial_tensor[slot] / V +
                              m.active_tensor[slot]);
         add_term_values(values);
+        if (c_.barostat.on) values.push_back(V);
         if (minimize_) minimize_->add_values(values);
         values.push_back(static_cast<double>(evolver_->list_builds()));
         if (state_.step > 0) {
@@ -734,6 +747,23 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             isotropic_ideal(m);
         }
         return m;
+    }
+
+    // The barostat scales a periodic box, on one process and on the CPU.
+    void check_barostat() const {
+        if (!c_.barostat.on) return;
+        const std::string& where = c_.barostat.where;
+        if (o_.comm && o_.comm->size() > 1)
+            throw InputError(where + ": the barostat runs on one process (the domains would "
+                                     "have to follow the box); start it without mpirun");
+        if (on_gpu())
+            throw InputError(where + ": the barostat runs on the CPU; set device = \"cpu\"");
+        if (state_.box.any_wall())
+            throw InputError(where + ": the barostat scales a periodic box, and this one has "
+                                     "walls ([box] boundary)");
+        if (c_.shear_rate > 0.0)
+            throw InputError(where + ": the barostat and Lees-Edwards shear ([box] shear_rate) "
+                                     "cannot run together");
     }
 
     // The plug-ins say what the logs need: an overdamped position integrator (its bath

@@ -643,6 +643,7 @@ RunConfig read_run_config(const toml::table& doc, const std::string& path, bool 
     else
         read_event_sections(doc, root, c);
     read_transport_config(root, c.transport);
+    read_barostat_config(root, c.dynamics, c.barostat);
     if (auto log = root.table("log")) {
         if (log->has("quantities")) {
             const toml::node* n = doc["log"]["quantities"].node();

@@ -1,6 +1,7 @@
 #pragma once
 // The contents of a run's TOML config, validated. Every key is documented in
 // docs/config.md; unknown keys are errors.
+#include "pedesis/setup/barostat_config.hpp"
 #include "pedesis/setup/transport_config.hpp"
 #include "pedesis/soft/fire_params.hpp"
 #include "pedesis/soft/plugin_spec.hpp"
@@ -116,6 +117,7 @@ struct RunConfig {
 
     TransportConfig transport; // [transport]
     FireParams minimize;       // [minimize] of dynamics = "minimize" (FIRE)
+    BarostatConfig barostat;   // [barostat]
 };
 
 // Whether `name` can name a species: 1 to 64 of A-Z a-z 0-9 _ - . + (it names log

@@ -42,14 +42,28 @@ template <int D> void Evolver<D>::add_integrator(std::unique_ptr<Integrator<D>> 
 }
 
 template <int D> void Evolver<D>::make_list() {
+    // shared among processes, the cells cover this process's region only
+    make_list(domain_ ? domain_->local_box(skin_) : s_.box);
+}
+
+template <int D> bool Evolver<D>::box_changed() const {
+    for (int a = 0; a < D; ++a)
+        if (nl_->box().length(a) != s_.box.length(a)) return true;
+    return false;
+}
+
+template <int D> bool Evolver<D>::list_stale() const {
+    if (domain_ || !box_changed()) return nl_->needs_rebuild(s_.p.position);
+    return nl_->needs_rebuild_scaled(s_.p.position, s_.box);
+}
+
+template <int D> void Evolver<D>::make_list(const Box<D>& box) {
     double range = r_cut_request_;
     for (const auto& f : forces_) range = std::max(range, f->range(s_));
     for (const auto& t : torques_) range = std::max(range, t->range(s_));
     if (range <= 0.0) range = 1e-3; // only one-body terms: an (almost) empty list
     r_list_cut_ = range;
-    // shared among processes, the cells cover this process's region only
-    nl_ = std::make_unique<NeighborList<D>>(domain_ ? domain_->local_box(skin_) : s_.box, range,
-                                            skin_);
+    nl_ = std::make_unique<NeighborList<D>>(box, range, skin_);
 }
 
 template <int D> double Evolver<D>::interaction_reach() {
@@ -81,7 +95,8 @@ template <int D> void Evolver<D>::ensure_list(bool for_totals) {
         }
         return;
     }
-    if (nl_->needs_rebuild(s_.p.position)) {
+    if (list_stale()) {
+        if (box_changed()) make_list(); // cells and images for the box of now
         nl_->build(s_.p.position);
         ++builds_;
     }
@@ -98,14 +113,31 @@ template <int D> std::vector<Vec<D>> Evolver<D>::list_reference() const {
     return nl_ && !domain_ ? nl_->build_positions() : std::vector<Vec<D>>{};
 }
 
+template <int D> std::vector<double> Evolver<D>::list_box_lengths() const {
+    const Box<D>& box = nl_ ? nl_->box() : s_.box;
+    std::vector<double> lengths(D);
+    for (int a = 0; a < D; ++a) lengths[static_cast<std::size_t>(a)] = box.length(a);
+    return lengths;
+}
+
 template <int D> double Evolver<D>::list_shear_offset() const {
     return nl_ ? nl_->build_shear_offset() : 0.0;
 }
 
 template <int D>
 void Evolver<D>::restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds,
-                              double shear_offset) {
-    make_list();
+                              double shear_offset, const std::vector<double>& build_lengths) {
+    if (build_lengths.size() == static_cast<std::size_t>(D) && !domain_) {
+        Vec<D> lengths;
+        std::array<bool, D> periodic{};
+        for (int a = 0; a < D; ++a) {
+            lengths[a] = build_lengths[static_cast<std::size_t>(a)];
+            periodic[a] = s_.box.periodic(a);
+        }
+        make_list(Box<D>(lengths, periodic));
+    } else {
+        make_list();
+    }
     if (!reference.empty()) {
         // the rows of the build, across the sheared faces too, then the offset of now
         if (s_.box.sheared()) nl_->set_shear_offset(shear_offset);
@@ -374,7 +406,7 @@ bool Evolver<D>::heat_flux(std::vector<double>& energy, Vec<D>& flux, SymTensor*
     // (a list of its own when this one is due a rebuild, as pair_totals_within_cutoff)
     std::optional<NeighborList<D>> fresh;
     const NeighborList<D>* list = nl_.get();
-    if (nl_->needs_rebuild(s_.p.position)) {
+    if (list_stale()) {
         fresh.emplace(s_.box, r_list_cut_, skin_);
         fresh->build(s_.p.position);
         list = &*fresh;
@@ -426,7 +458,7 @@ template <int D> PairTotals Evolver<D>::pair_totals_within_cutoff() {
         std::copy(sums.begin() + 2, sums.end(), t.virial_tensor.begin());
         return t;
     }
-    if (!nl_->needs_rebuild(s_.p.position)) {
+    if (!list_stale()) {
         for (const auto& f : forces_) f->add_totals(s_, *nl_, t);
         return t;
     }

@@ -90,8 +90,12 @@ template <int D> class Evolver {
     // Under Lees-Edwards shear also the box's offset at that build.
     std::vector<Vec<D>> list_reference() const;
     double list_shear_offset() const;
+    // Under a barostat also the box's lengths at that build (the list's cells and images):
+    // build_lengths, empty for the present box.
     void restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds,
-                      double shear_offset = 0.0);
+                      double shear_offset = 0.0, const std::vector<double>& build_lengths = {});
+    // The box lengths of the last list build (the box's own before a build).
+    std::vector<double> list_box_lengths() const;
 
     // Energy and virial of the conservative pair forces at the current positions, with
     // the terms' tail corrections (ForceTerm::tail).
@@ -123,6 +127,11 @@ template <int D> class Evolver {
     // (`error` non-empty), else returns whether any asks to stop (`stop`).
     bool agree(const std::string& error, bool stop);
     void make_list();
+    void make_list(const Box<D>& box);
+    // Whether the list may miss a pair within the cutoff: the list's own rule, or under a
+    // box scaled since the build (a barostat) NeighborList::needs_rebuild_scaled.
+    bool list_stale() const;
+    bool box_changed() const;
     // Under Lees-Edwards shear: the box's offset (and its list's) slid on by rate L_y dt.
     void slide_images(double dt);
     void reorder_storage();

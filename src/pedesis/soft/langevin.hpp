@@ -67,6 +67,19 @@ struct LangevinCoefficients {
     }
 };
 
+// BAOAB's A O A for one particle of species k: v becomes the O step's velocity; returns
+// the move. z: its D normals, or null without noise. (Also the barostat's, barostat.hpp.)
+template <int D>
+inline Vec<D> langevin_aoa(Vec<D>& v, const LangevinCoefficients& c, std::uint16_t k,
+                           const double* z) {
+    Vec<D> move = c.half_drift[k] * v;
+    v *= c.damp[k];
+    if (z)
+        for (int a = 0; a < D; ++a) v[a] += c.noise[k] * z[a];
+    move += c.half_drift[k] * v;
+    return move;
+}
+
 } // namespace detail
 
 template <int D> class LangevinIntegrator final : public Integrator<D> {
@@ -149,11 +162,7 @@ template <int D> class LangevinIntegrator final : public Integrator<D> {
                 const std::int64_t i = first + q;
                 const std::uint16_t k = sp[i];
                 Vec<D> v = vel[i] + kick[k] * force[i];
-                Vec<D> move = half_drift[k] * v;
-                v *= damp[k];
-                if (noisy)
-                    for (int a = 0; a < D; ++a) v[a] += noise[k] * z[q * D + a];
-                move += half_drift[k] * v;
+                const Vec<D> move = detail::langevin_aoa(v, c_, k, noisy ? z + q * D : nullptr);
                 if (!(norm2(move) <= max2)) batch_bad.note(i, move);
                 pos[i] += move;
                 vel[i] = v;

@@ -906,6 +906,29 @@ template <int D> std::size_t NeighborList<D>::memory_bytes() const {
            (chunk_start_.capacity() + colour_chunk_.capacity()) * sizeof(std::size_t);
 }
 
+template <int D>
+bool NeighborList<D>::needs_rebuild_scaled(const std::vector<Vec<D>>& pos,
+                                           const Box<D>& now) const {
+    if (builds_ == 0 || n_ != pos.size()) return true;
+    Vec<D> back;
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (int a = 0; a < D; ++a) {
+        const double lambda = now.length(a) / box_.length(a);
+        back[a] = 1.0 / lambda;
+        lo = std::min(lo, lambda);
+        hi = std::max(hi, lambda);
+    }
+    double most2 = 0.0;
+    for (std::size_t i = 0; i < n_; ++i) {
+        Vec<D> r;
+        for (int a = 0; a < D; ++a) r[a] = pos[i][a] * back[a];
+        most2 = std::max(most2, norm2(box_.minimum_image(r - home_[i])));
+    }
+    const double u = std::sqrt(most2);
+    return !(lo * (r_list_ - 2.0 * u) >= r_cut_ &&
+             hi * (r_list_ + 2.0 * u) <= r_list_ + 2.0 * skin_);
+}
+
 template class NeighborList<2>;
 template class NeighborList<3>;
 

@@ -72,6 +72,14 @@ template <int D> class NeighborList {
     // holds, where needs_rebuild cannot see them), when the particle count changed, or
     // before the first build.
     bool moved_half_skin(const std::vector<Vec<D>>& pos) const;
+    // needs_rebuild where the box has been scaled along its axes since the build (a
+    // barostat: soft/barostat.hpp) to `now`, by lambda_a = now_a / then_a. A pair's
+    // separation is lambda times that of the positions scaled back, which moved by at
+    // most u from the build: a pair missing from the rows is now at least
+    // min lambda (r_list - 2u) apart, so the list holds every pair within r_cut while that
+    // is r_cut or more; and a listed pair is at most max lambda (r_list + 2u) apart,
+    // within the r_list + 2 skin that image_free_margin assumes. Not under shear.
+    bool needs_rebuild_scaled(const std::vector<Vec<D>>& pos, const Box<D>& now) const;
 
     // Lees-Edwards shear (core/box.hpp): the box's offset now. A pair across the y faces
     // moves by the offset's change relative to each other, so under shear both rules
