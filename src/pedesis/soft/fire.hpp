@@ -7,9 +7,9 @@
 //   P <= 0: dt = f_dec dt (not below dt_min, and not in the first n_delay steps),
 //           alpha = alpha_start, the half step back x -= dt v / 2, and v = 0
 //   then    v += dt F;  v = (1 - alpha) v + alpha |v| F / |F|;  x += dt v
-// with unit masses, as HOOMD's FIRE moves every particle alike, so that the path does not
-// depend on the species' masses (a minimum does not either). A particle of infinite
-// mass is a fixed obstacle and is left out of every sum. No particle moves further than
+// with unit masses, so that the path does not depend on the species' masses (a minimum
+// does not either; LAMMPS' FIRE divides by each atom's mass). A particle of infinite mass
+// is a fixed obstacle and is left out of every sum. No particle moves further than
 // max_move in one step (LAMMPS' dmax), the half step back included: the whole move is
 // shortened for all, so that a large dt never jumps a particle past a neighbour or
 // further than the neighbour list's skin, whose rebuild check then sees every step's
