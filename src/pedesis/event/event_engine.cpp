@@ -148,6 +148,7 @@ EventEngine<D>::EventEngine(ParticleStore<D> particles, const Box<D>& box,
                  std::vector<std::uint16_t>(p_.size(), 0));
     if (params_.tc > 0.0) last_collision_.assign(size(), -never);
     start_gravity();
+    start_moving_wall();
     resum_kinetic_energy();
     if (params_.thermostat_temperature > 0.0 && params_.growth_rate > 0.0)
         throw InputError("event.thermostat: growth holds the kinetic energy itself; use one or "
@@ -542,7 +543,7 @@ template <int D> void EventEngine<D>::advance(std::uint32_t i) {
 }
 
 template <int D> double EventEngine<D>::predict(std::uint32_t i) {
-    if (falling_) [[unlikely]]
+    if (falling_ || moving_) [[unlikely]]
         return predict_falling(i);
     return growth_.growing ? predict_with<true>(i) : predict_with<false>(i);
 }
@@ -560,8 +561,13 @@ template <int D> double EventEngine<D>::predict_falling(std::uint32_t i) {
     for (int a = 0; a < D; ++a) {
         if (box_.periodic(a)) continue;
         bool upper = false;
-        const double tw =
-            falling_wall_time(xi[a], vi[a], gravity_[a], box_.lo(a), box_.hi(a), ri, upper);
+        double tw = falling_wall_time(xi[a], vi[a], gravity_[a], box_.lo(a), box_.hi(a), ri, upper);
+        if (moving_ && a == moving_axis_) [[unlikely]] {
+            // the fixed face only here; the moving one last, with the earliest horizon
+            upper = moving_side_ == 0;
+            tw = upper ? falling_gap_time((box_.hi(a) - ri) - xi[a], -vi[a], -gravity_[a])
+                       : falling_gap_time(xi[a] - (box_.lo(a) + ri), vi[a], gravity_[a]);
+        }
         if (tw < best) {
             best = tw;
             partner = wall_event_base - (2 * a + (upper ? 1 : 0));
@@ -578,6 +584,8 @@ template <int D> double EventEngine<D>::predict_falling(std::uint32_t i) {
             partner = static_cast<std::int32_t>(j);
         }
     }
+    if (moving_) [[unlikely]]
+        meet_moving_wall(xi, vi, ri, best, partner);
     return settle_event(i, best, partner);
 }
 
@@ -727,9 +735,11 @@ template <int D> void EventEngine<D>::process_pair(std::uint32_t i, std::uint32_
 }
 
 template <int D> void EventEngine<D>::process_wall(std::uint32_t i, std::int32_t code) {
-    advance(i);
     const int k = wall_event_base - code;
     const int a = k / 2, side = k % 2;
+    if (moving_ && a == moving_axis_ && side == moving_side_) [[unlikely]]
+        return process_moving_wall(i, side);
+    advance(i);
     double xi = params_.wall_restitution;
     if (params_.tc > 0.0) {
         if (now_ - last_collision_[i] < params_.tc) xi = 1.0;
@@ -1213,8 +1223,8 @@ constexpr std::uint64_t checkpoint_magic = 0x4b43455344455045ull; // "EPEDSECK" 
 // 2: one cell list per size class; 3: growth state; 4: the collision virial's
 // off-diagonal components; 5: image counts and the flux moments (version 4 is read with
 // none crossed and no moments); 6: Lees-Edwards shear and the rescaling thermostat;
-// 7: gravity, the Andersen thermostat and the white-noise driving
-constexpr std::uint32_t checkpoint_version = 7;
+// 7: gravity, the Andersen thermostat and the white-noise driving; 8: the moving wall's work
+constexpr std::uint32_t checkpoint_version = 8;
 constexpr std::uint32_t oldest_checkpoint_version = 4;
 } // namespace
 
@@ -1295,6 +1305,8 @@ template <int D> void EventEngine<D>::save(std::ostream& out) const {
     put(out, driving_.andersen_energy);
     put(out, driving_.kicks);
     put(out, driving_.injected_energy);
+    put(out, wall_work_);
+    put(out, wall_checks_);
 }
 
 template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const EventParams& params) {
@@ -1446,6 +1458,11 @@ template <int D> EventEngine<D> EventEngine<D>::load(std::istream& in, const Eve
             throw InputError("event.gravity differs from the checkpoint's (the energy it keeps "
                              "counts the potential energy of its gravity): give the same");
     e.start_gravity();
+    e.start_moving_wall();
+    if (version >= 8) {
+        get(in, e.wall_work_);
+        get(in, e.wall_checks_);
+    }
     e.ev_.resize(n);
     for (std::size_t i = 0; i < n; ++i) e.ev_[i] = {centres[i], partners[i], counts[i]};
     e.start_driving();

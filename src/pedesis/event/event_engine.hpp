@@ -31,6 +31,7 @@
 #include "pedesis/core/rng.hpp"
 #include "pedesis/event/event_queue.hpp"
 #include "pedesis/event/flight.hpp"
+#include "pedesis/event/moving_wall.hpp"
 #include "pedesis/event/pair_times.hpp"
 #include "pedesis/spatial/cell_list.hpp"
 
@@ -80,6 +81,12 @@ struct EventParams {
     double driving_rate = 0.0;
     double driving_strength = 0.0;
     std::uint64_t seed = 1; // of the thermostat's and the driving's random numbers
+    // One wall that moves along its normal ([event.moving_wall]; event/moving_wall.hpp):
+    // the face of axis moving_wall_axis (-1: none), the upper one if moving_wall_upper.
+    // Its collisions have restitution wall_restitution in the wall's frame.
+    int moving_wall_axis = -1;
+    bool moving_wall_upper = false;
+    WallMotion moving_wall{};
 };
 
 // What the Andersen thermostat and the white-noise driving have done.
@@ -149,6 +156,14 @@ template <int D> class EventEngine {
     // of each centre above the floor(s) and never negative. 0 without gravity.
     double potential_energy() const;
     bool falling() const { return falling_; }
+    // The moving wall: whether there is one, its face's coordinate now, the work it has
+    // done on the particles (the energy it injected, less nothing: what the restitution
+    // takes is in counters().energy_lost), and the times a prediction's climb stopped
+    // short of a contact (event/moving_wall.hpp's checks).
+    bool wall_moves() const { return moving_; }
+    double moving_wall_position() const;
+    double wall_work() const { return wall_work_; }
+    std::uint64_t wall_checks() const { return wall_checks_; }
     const DrivingStatus& driving() const { return driving_; }
     std::size_t size() const { return f_.size(); }
     double skin() const { return skin_; }
@@ -312,6 +327,12 @@ template <int D> class EventEngine {
     void schedule_growth_step();
     template <bool Growing> double predict_with(std::uint32_t i);
     double predict_falling(std::uint32_t i);
+    // The moving wall (event/event_moving_wall.cpp): its checks at set-up, its meeting
+    // with particle i (on i's flight from now_) if before `best`, and a contact or check.
+    void start_moving_wall();
+    void meet_moving_wall(const Vec<D>& xi, const Vec<D>& vi, double ri, double& best,
+                          std::int32_t& partner);
+    void process_moving_wall(std::uint32_t i, int side);
     // A prediction's end: i's event is `partner` (its count noted) after `best`, or none.
     double settle_event(std::uint32_t i, double best, std::int32_t partner) {
         if (best == never_time) partner = no_event;
@@ -343,6 +364,14 @@ template <int D> class EventEngine {
     // kicks and redraws change
     Vec<D> gravity_{};
     bool falling_ = false;
+    // the moving wall (moving_: there is one; predictions then take predict_falling's way)
+    bool moving_ = false;
+    WallMotion motion_{};
+    int moving_axis_ = 0, moving_side_ = 0;
+    double wall_tolerance_ = 0.0; // a gap taken as contact: 1e-12 of the axis's length
+    double largest_radius_ = 0.0;
+    double wall_work_ = 0.0;
+    std::uint64_t wall_checks_ = 0;
     // the Andersen thermostat and the white-noise driving: the next event of each (never
     // without) and what they have done; mobile_: storage indices of the mobile particles
     double next_andersen_ = never_time;

@@ -58,6 +58,12 @@ const std::vector<QuantityInfo>& quantity_catalogue() {
         {"injected_energy", "energy",
          "kinetic energy the white-noise driving ([event] driving) has added since t = 0",
          "event"},
+        {"wall_work", "energy",
+         "work the moving wall ([event.moving_wall]) has done on the particles since t = 0: the "
+         "energy it injected (what the wall restitution takes of it is in the energy lost)",
+         "event"},
+        {"wall_position", "length",
+         "coordinate of the moving wall's face ([event.moving_wall]) at the row's time", "event"},
         {"conserved_energy", "energy",
          "total_energy plus the energy of the thermostat's bath (bussi: minus the kinetic energy "
          "its rescales added; nose_hoover: the chain's kinetic and potential terms; nve with "

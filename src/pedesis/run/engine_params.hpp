@@ -24,6 +24,9 @@ inline EventParams event_params(const RunConfig& c) {
     p.andersen_temperature = c.andersen_temperature;
     p.driving_rate = c.driving_rate;
     p.driving_strength = c.driving_strength;
+    p.moving_wall_axis = c.moving_wall_axis;
+    p.moving_wall_upper = c.moving_wall_upper;
+    p.moving_wall = c.moving_wall;
     p.seed = c.seed;
     return p;
 }

@@ -24,6 +24,7 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <numbers>
 #include <optional>
 
 namespace pedesis {
@@ -130,6 +131,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         if (growing_) c.insert(c.end(), {"packing_fraction", "growth_pressure"});
         if (engine_->falling()) c.insert(c.end(), {"potential_energy", "total_energy"});
         if (c_.driving_rate > 0.0) c.push_back("injected_energy");
+        if (engine_->wall_moves()) c.insert(c.end(), {"wall_work", "wall_position"});
         return c;
     }
 
@@ -150,6 +152,7 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
             values.insert(values.end(), {u, u + e.kinetic_energy()});
         }
         if (c_.driving_rate > 0.0) values.push_back(e.driving().injected_energy);
+        if (e.wall_moves()) values.insert(values.end(), {e.wall_work(), e.moving_wall_position()});
         progress(m.temperature, m.pressure, m.has_pressure);
     }
 
@@ -170,6 +173,19 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
         if (engine_->falling())
             console_ << fmt::format("  gravity {}: parabolic flights\n",
                                     fmt::join(c_.gravity, ", "));
+        if (engine_->wall_moves()) {
+            const WallMotion& m = c_.moving_wall;
+            const std::string face =
+                fmt::format("{} wall of {}", c_.moving_wall_upper ? "upper" : "lower",
+                            "xyz"[c_.moving_wall_axis]);
+            if (m.vibrated())
+                console_ << fmt::format(
+                    "  moving wall: the {} vibrates, amplitude {:g}, frequency {:g}\n", face,
+                    m.amplitude, m.angular_frequency / (2.0 * std::numbers::pi));
+            else
+                console_ << fmt::format("  moving wall: the {} moves in at speed {:g}\n", face,
+                                        m.speed);
+        }
         if (c_.andersen_rate > 0.0)
             console_ << fmt::format(
                 "  Andersen thermostat: T = {:g}, each particle redrawn at rate {:g}\n",
@@ -263,6 +279,21 @@ template <int D> class EventRunEngine final : public HardRunEngine<D> {
                             {"kicks", d.kicks},
                             {"injected_energy", d.injected_energy},
                             {"injected_power", e.time() > 0 ? d.injected_energy / e.time() : 0.0}};
+        if (e.wall_moves()) {
+            const WallMotion& m = c_.moving_wall;
+            nlohmann::json w = {{"axis", std::string(1, "xyz"[c_.moving_wall_axis])},
+                                {"side", c_.moving_wall_upper ? "upper" : "lower"},
+                                {"work", e.wall_work()},
+                                {"power", e.time() > 0 ? e.wall_work() / e.time() : 0.0},
+                                {"checks", e.wall_checks()}};
+            if (m.vibrated()) {
+                w["amplitude"] = m.amplitude;
+                w["frequency"] = m.angular_frequency / (2.0 * std::numbers::pi);
+            } else {
+                w["speed"] = m.speed;
+            }
+            j["moving_wall"] = w;
+        }
     }
 
     double msd() const {

@@ -8,6 +8,7 @@
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/setup/hard_driving_config.hpp"
+#include "pedesis/setup/moving_wall_config.hpp"
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/setup/minimize_config.hpp"
 #include "pedesis/setup/velocities.hpp"
@@ -318,6 +319,7 @@ void read_event_sections(const toml::table& doc, ConfigTable& root, RunConfig& c
                 throw InputError(ev->where(key) + ": needs event.growth_rate > 0");
         read_gravity(*ev, c);
         read_driving(*ev, c);
+        read_moving_wall(*ev, c);
         read_event_thermostat(*ev, c);
         ev->finish();
     }

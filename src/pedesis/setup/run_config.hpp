@@ -2,6 +2,7 @@
 // The contents of a run's TOML config, validated. Every key is documented in
 // docs/config.md; unknown keys are errors.
 #include "pedesis/setup/barostat_config.hpp"
+#include "pedesis/event/moving_wall.hpp"
 #include "pedesis/setup/transport_config.hpp"
 #include "pedesis/soft/fire_params.hpp"
 #include "pedesis/soft/plugin_spec.hpp"
@@ -76,6 +77,11 @@ struct RunConfig {
     std::vector<double> gravity;
     double andersen_rate = 0.0, andersen_temperature = 0.0;
     double driving_rate = 0.0, driving_strength = 0.0;
+    // [event.moving_wall] (setup/moving_wall_config.hpp): the axis of the face that moves
+    // (-1: none), whether it is the upper face, and how it moves
+    int moving_wall_axis = -1;
+    bool moving_wall_upper = false;
+    WallMotion moving_wall{};
 
     // [stepped] (dynamics = stepped): the time step is `dt` below, the other keys of [run]
     // and [output] are the event engine's, and [run] steps is a stop condition too
