@@ -137,7 +137,7 @@ TEST_F(Minimize, WhatFireDoesNotRunWithIsRefused) {
     expect_rejected(nve, {"minimize", "dynamics = minimize", "\"nve\""});
 }
 
-TEST_F(Minimize, ARestartIsRefusedAndTheFinalFrameIsTheWayOn) {
+TEST_F(Minimize, ARestartIsRefusedAndAFinishedMinimisationHasNothingToResume) {
     write("run.toml", packing("force_tolerance = 1e-12\n", "20"));
     ASSERT_EQ(run_pedesis("run run.toml --out out", dir, 120).exit_code, 0);
     write("more.toml", packing("force_tolerance = 1e-12\n", "40"));
@@ -145,6 +145,13 @@ TEST_F(Minimize, ARestartIsRefusedAndTheFinalFrameIsTheWayOn) {
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("does not continue from a checkpoint"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "more" / "summary.json"));
+    // a minimisation that met its tolerance is a finished run for --resume
+    write("done.toml", packing());
+    ASSERT_EQ(run_pedesis("run done.toml --out done", dir, 120).exit_code, 0);
+    const CliResult again = run_pedesis("run done.toml --out done --resume", dir, 120);
+    EXPECT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("stopped by force_tolerance): nothing to do"), std::string::npos)
+        << again.output;
 }
 
 } // namespace

@@ -38,7 +38,9 @@ template <int D> class SoftMinimization {
                                     "GSD or XYZ trajectory of it)");
         if (o.comm && o.comm->size() > 1)
             throw InputError(head + " runs on one process: start it without mpirun");
-        if (on_gpu) throw InputError(head + " runs on the CPU: remove device = \"gpu\"");
+        if (on_gpu)
+            throw InputError(head +
+                             " runs on the CPU, not with device = \"gpu\" (nor --device gpu)");
         if (c.shear_rate > 0.0)
             throw InputError(head + " minimises in a fixed box: remove [box] shear_rate");
     }
