@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <memory>
 
 using namespace pedesis;
@@ -98,9 +99,9 @@ template <int D> void ideal_gas(bool anisotropic) {
     Evolver<D> e(s, 0.5);
     add_barostat<D>(e, P, 0.5, anisotropic, bath<D>(T, 2.0));
     const double dt = 0.01;
-    e.run(3000, dt);
+    e.run(2000, dt);
     double sum = 0.0, sum2 = 0.0;
-    const int samples = 6000, every = 10;
+    const int samples = 3000, every = 10;
     for (int k = 0; k < samples; ++k) {
         e.run(every, dt);
         const double V = s.box.volume();
@@ -108,11 +109,14 @@ template <int D> void ideal_gas(bool anisotropic) {
         sum2 += V * V;
     }
     const double mean = sum / samples, var = sum2 / samples - mean * mean;
-    // the volume decorrelates in about 2 tau = 100 steps: ~600 independent samples of a
-    // relative spread 1/sqrt(N + 1) = 5%, so the mean is known to 0.2% and the variance
-    // to 6%; tolerances at 4 of those
-    EXPECT_NEAR(mean / target, 1.0, 0.008) << mean << " against " << target;
-    EXPECT_NEAR(var / ((n + 1) * (T / P) * (T / P)), 1.0, 0.25) << var;
+    std::cout << D << "D" << (anisotropic ? " anisotropic" : "")
+              << ": <V> / ((N + 1) T / P) = " << mean / target
+              << ", var V / (N + 1)(T/P)^2 = " << var / ((n + 1) * (T / P) * (T / P)) << "\n";
+    // the volume decorrelates in about 2 tau = 100 steps: ~300 independent samples of a
+    // relative spread 1/sqrt(N + 1) = 5%, so the mean is known to 0.3% and the variance
+    // to 8%; tolerances at 4 of those
+    EXPECT_NEAR(mean / target, 1.0, 0.012) << mean << " against " << target;
+    EXPECT_NEAR(var / ((n + 1) * (T / P) * (T / P)), 1.0, 0.33) << var;
 }
 
 // Max |H - H0| / N over a run at constant enthalpy, and the volume's relative range.
@@ -169,12 +173,14 @@ TEST(Barostat, IdealGasHasTheIsobaricVolumeAnisotropic2D) {
 TEST(Barostat, ConstantEnthalpyIsConservedToSecondOrder) {
     for (const bool aniso : {false, true}) {
         // at dt and dt / 2: the drift falls about fourfold (O(dt^2)), and it is small
-        const auto [big, range] = enthalpy_drift<3>(aniso, 0.004, 1500);
-        const auto [small, range2] = enthalpy_drift<3>(aniso, 0.002, 3000);
+        const auto [big, range] = enthalpy_drift<3>(aniso, 0.004, 1000);
+        const auto [small, range2] = enthalpy_drift<3>(aniso, 0.002, 2000);
+        std::cout << (aniso ? "anisotropic" : "isotropic") << " 3D: max |H - H0| / N = " << big
+                  << " (dt 0.004), " << small << " (dt 0.002); volume range " << range << "\n";
         EXPECT_GT(range, 0.01) << "the volume hardly moved";
         EXPECT_LT(big, 2e-3) << aniso;
         EXPECT_LT(small / big, 0.4) << small << " " << big;
-        const auto [two, range_2d] = enthalpy_drift<2>(aniso, 0.004, 1500);
+        const auto [two, range_2d] = enthalpy_drift<2>(aniso, 0.004, 1000);
         EXPECT_LT(two, 2e-3) << aniso;
         EXPECT_GT(range_2d, 0.01);
         (void)range2;
