@@ -5,7 +5,9 @@
 // numbers for the offsets, the rate and three empty arrays and the [transport] flag that
 // follows it, and for version 3 without the
 // empty array of active velocities before it, envelope length and CRC redone), and the
-// restart from it must continue the run bit for bit, as from the version-5 file.
+// restart from it must continue the run bit for bit, as from the version-5 file. (The
+// checkpoint pedesis writes now is of version 7: the blocks of versions 6 and 7, the
+// integrators' states and the box of the list's build, are cut off first.)
 #include "cli/cli_support.hpp"
 
 #include <zlib.h>
@@ -39,8 +41,25 @@ std::string as_version(const std::string& file, std::uint32_t older) {
     std::string payload = file.substr(16, n);
     std::uint32_t version = 0;
     std::memcpy(&version, payload.data() + 8, 4); // after the engine's 8-byte magic
-    EXPECT_EQ(version, 5u);
+    EXPECT_EQ(version, 7u);
     std::memcpy(payload.data() + 8, &older, 4);
+    // version 6's block: the integrators' count, then each one's name and numbers (none
+    // for these two); version 7's: the box of the list's last build (this box, 20 x 20)
+    std::string later;
+    const auto count = [&later](std::uint64_t x) {
+        later.append(reinterpret_cast<const char*>(&x), 8);
+    };
+    count(2);
+    for (const std::string name : {"brownian", "brownian_rotation"}) {
+        count(name.size());
+        later += name;
+        count(0);
+    }
+    count(2);
+    for (const double length : {20.0, 20.0})
+        later.append(reinterpret_cast<const char*>(&length), 8);
+    EXPECT_EQ(payload.substr(payload.size() - later.size()), later);
+    payload.resize(payload.size() - later.size());
     // the shear block: rate, offset, the list's offset (all 0), three empty arrays; then
     // the [transport] flag (0)
     std::string shear(49, '\0');
