@@ -116,10 +116,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         for (const auto* list : {&c_.forces, &c_.torques, &c_.integrators})
             for (const auto& spec : *list) {
                 if (c_.barostat.on && list == &c_.integrators && moves_positions(spec))
-                    evolver_->add_integrator(
-                        make_mtk_integrator<D>(c_.barostat, spec, table, c_.seed, [this] {
-                            return evolver_->pair_totals().virial_tensor;
-                        }));
+                    evolver_->add_integrator(make_mtk_integrator<D>(
+                        c_.barostat, spec, table, c_.seed,
+                        [this] { return evolver_->pair_totals().virial_tensor; },
+                        state_.box.volume()));
                 else
                     add_plugin(*evolver_, spec, table, c_.seed);
             }
@@ -875,7 +875,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
     SoftRunBook<D> book_;
     const Integrator<D>* overdamped_ = nullptr;
     Integrator<D>* thermostat_ = nullptr; // bussi or nose_hoover: the bath of conserved_energy
-    std::vector<double> bath_T_; // per species, of the overdamped integrator
+    std::vector<double> bath_T_;          // per species, of the overdamped integrator
     const Momentum momentum_ = momentum_of(c_);
     std::uint64_t step_start_ = 0; // of this invocation, for its speed
     double clock_t0_ = 0.0;        // the origin of the clock (SoftClock)

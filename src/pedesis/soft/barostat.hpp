@@ -53,10 +53,11 @@ template <int D> class MtkIntegrator final : public Integrator<D> {
         detail::NoiseShape noise = detail::NoiseShape::gaussian;
     };
 
+    // `volume`: the box's at the start (what conserved_energy counts before the first step).
     MtkIntegrator(double pressure, double tau, bool anisotropic, std::optional<Bath> bath,
-                  VirialOf virial)
+                  VirialOf virial, double volume = 0.0)
         : pressure_(pressure), tau_(tau), anisotropic_(anisotropic), bath_(std::move(bath)),
-          virial_of_(std::move(virial)) {
+          virial_of_(std::move(virial)), volume_(volume) {
         if (!(pressure > 0.0 && std::isfinite(pressure)))
             throw InputError("barostat: pressure must be a positive finite number");
         if (!(tau > 0.0 && std::isfinite(tau)))
@@ -324,10 +325,10 @@ template <int D> class MtkIntegrator final : public Integrator<D> {
 
 // The position integrator `spec` (nve or langevin) under the barostat `b`.
 template <int D>
-std::unique_ptr<Integrator<D>> make_mtk_integrator(const BarostatConfig& b, const PluginSpec& spec,
-                                                   const std::vector<Species>& table,
-                                                   std::uint64_t seed,
-                                                   typename MtkIntegrator<D>::VirialOf virial) {
+std::unique_ptr<Integrator<D>>
+make_mtk_integrator(const BarostatConfig& b, const PluginSpec& spec,
+                    const std::vector<Species>& table, std::uint64_t seed,
+                    typename MtkIntegrator<D>::VirialOf virial, double volume) {
     std::optional<typename MtkIntegrator<D>::Bath> bath;
     if (spec.name == "langevin") {
         const auto uniform = spec.flags.find("uniform_noise");
@@ -342,7 +343,7 @@ std::unique_ptr<Integrator<D>> make_mtk_integrator(const BarostatConfig& b, cons
                          spec.name + "'");
     }
     return std::make_unique<MtkIntegrator<D>>(b.pressure, b.tau, b.anisotropic, std::move(bath),
-                                              std::move(virial));
+                                              std::move(virial), volume);
 }
 
 } // namespace pedesis
