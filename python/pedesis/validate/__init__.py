@@ -9,7 +9,7 @@ runs shorter versions in under 2 minutes on 2 cores; the full suite takes under 
     pedesis validate --quick            # the same, through the CLI
 """
 from .cases import (active, active_models, granular, hard, liquid, sedimentation, shear,
-                    transport)
+                    thermostats, transport)
 from .checks import CaseError, CaseResult, Check
 
 # (name, function, runs in quick mode too); in this order in the table
@@ -30,6 +30,7 @@ CASES = (
     ("aoup_msd", active_models.aoup_msd, True),
     ("abp_sedimentation", sedimentation.abp_sedimentation, True),
     ("lennard_jones", liquid.lennard_jones, True),
+    ("nvt_thermostats", thermostats.nvt_thermostats, True),
     ("hard_sphere_transport", transport.hard_sphere_transport, True),
     ("dilute_transport", transport.dilute_transport, False),
     ("hard_disk_transport", transport.hard_disk_transport, True),
