@@ -57,6 +57,24 @@ TEST_F(HardDriving, GravityLogsItsEnergiesAndKeepsTheTotal) {
     EXPECT_NEAR(j.at("gravity").at("total_energy").get<double>(), e.back(), 1e-9 * e[0]);
 }
 
+TEST_F(HardDriving, SteppedGravityLogsItsEnergies) {
+    std::string config = std::regex_replace(
+        falling_disks(gravity, 10.0), std::regex("dynamics = \"event\""), "dynamics = \"stepped\"");
+    config = std::regex_replace(config, std::regex("\\[event\\]"), "[stepped]\ndt = 0.01");
+    write("run.toml", config);
+    const CliResult r = run_pedesis("run run.toml --out good", dir, 60);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const CsvColumns log = csv_columns(read("good/log.csv"));
+    const auto u = log.numbers("potential_energy"), e = log.numbers("total_energy");
+    ASSERT_EQ(u.size(), 11u);
+    for (std::size_t i = 0; i < u.size(); ++i) EXPECT_NEAR(e[i], e[0], 1e-9 * e[0]) << i;
+    EXPECT_LT(u.back(), u.front());
+    EXPECT_TRUE(nlohmann::json::parse(read("good/summary.json")).contains("gravity"));
+    expect_rejected(
+        std::regex_replace(config, std::regex("gravity = \\[0.0, -0.5\\]"), "gravity = [0.5, 0.0]"),
+        {"stepped.gravity", "periodic"});
+}
+
 TEST_F(HardDriving, RestartsContinueBitForBit) {
     for (const std::string& event : {gravity, andersen, driving, gravity + "\n" + andersen}) {
         SCOPED_TRACE(event);
