@@ -130,7 +130,7 @@ TEST_F(Barostat, BadTablesAndRunsItCannotDriveExitTwo) {
         {"[box]\n", "[box]\nboundary = [\"periodic\", \"periodic\", \"wall\"]\n",
          "the barostat scales a periodic box", "[[integrator]]",
          "[[force]]\nname = \"wall\"\npotential = \"wca\"\n\n[[integrator]]"},
-        {"[run]\n", "[run]\ndevice = \"gpu\"\n", "device"},
+        {"[run]\n", "[run]\ndevice = \"gpu\"\n", "the barostat runs on the CPU"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.to);
