@@ -97,6 +97,101 @@ struct SpeciesChoice {
 
 } // namespace detail
 
+namespace detail {
+
+inline void replace_first(std::string& t, const std::string& from, const std::string& to) {
+    const std::size_t at = t.find(from);
+    if (at != std::string::npos) t.replace(at, from.size(), to);
+}
+
+} // namespace detail
+
+// The ensembles and minimisation of the soft engine (chosen after everything else, so
+// that the choices before keep their meaning for the corpus): an nve run becomes bussi,
+// nose_hoover or (without torques and active forces, which it refuses) minimize.
+inline void add_ensembles(Choices& c, const std::string& dynamics, std::string& t) {
+    using detail::toml_number;
+    if (dynamics == "langevin" || dynamics == "nve") {
+        // MTK ([barostat]) beside langevin or nve, at pressures from a gas's to a solid's
+        if (c.sometimes(48)) {
+            static const char* const couplings[] = {"isotropic", "anisotropic"};
+            t += "[barostat]\npressure = " + toml_number(c.geometric(1e-3, 20.0)) +
+                 "\ntau = " + toml_number(c.geometric(1e-3, 10.0)) + "\ncoupling = \"" +
+                 couplings[c.pick(2)] + "\"\n";
+            return;
+        }
+    }
+    if (dynamics != "nve" || !c.sometimes(96)) return;
+    const unsigned kind = c.pick(3);
+    const std::string integrator = "[[integrator]]\nname = \"nve\"\n";
+    if (kind < 2) {
+        const std::string name = kind == 0 ? "bussi" : "nose_hoover";
+        std::string entry = "[[integrator]]\nname = \"" + name +
+                            "\"\nT = " + toml_number(c.geometric(1e-3, 2.0)) +
+                            "\ntau = " + toml_number(c.geometric(1e-3, 10.0)) + "\n";
+        if (kind == 1 && c.sometimes(64))
+            entry += "chain = " + std::to_string(1 + c.pick(6)) + "\n";
+        detail::replace_first(t, "dynamics = \"nve\"", "dynamics = \"" + name + "\"");
+        detail::replace_first(t, integrator, entry);
+        return;
+    }
+    detail::replace_first(t, "dynamics = \"nve\"", "dynamics = \"minimize\"");
+    detail::replace_first(t, integrator, "");
+    std::string table =
+        "[minimize]\nforce_tolerance = " + toml_number(c.geometric(1e-10, 1.0)) + "\n";
+    if (c.sometimes(64))
+        table += "energy_tolerance = " + toml_number(c.geometric(1e-12, 0.5)) + "\n";
+    if (c.sometimes(64)) table += "n_delay = " + std::to_string(c.pick(40)) + "\n";
+    t += table;
+}
+
+// The drives of the hard engines (chosen last, as add_ensembles): gravity along a walled
+// axis (event and stepped), and for the event engine the Andersen thermostat, white-noise
+// kicks and a vibrated or driven wall. Refusals (shear, growth, obstacles) are allowed
+// outcomes.
+inline void add_hard_drives(Choices& c, const std::string& dynamics, const std::vector<bool>& wall,
+                            std::string& t) {
+    using detail::toml_number;
+    if (dynamics != "event" && dynamics != "stepped") return;
+    const std::string table = "[" + dynamics + "]\n";
+    std::string keys;
+    int walled = -1;
+    for (std::size_t a = 0; a < wall.size(); ++a)
+        if (wall[a]) walled = static_cast<int>(a);
+    if (walled >= 0 && c.sometimes(64)) {
+        std::vector<double> g(wall.size(), 0.0);
+        g[static_cast<std::size_t>(walled)] = -c.geometric(1e-3, 50.0);
+        if (c.sometimes(32)) g[static_cast<std::size_t>(walled)] *= -1.0;
+        keys += "gravity = " + detail::toml_list(g) + "\n";
+    }
+    if (dynamics == "event") {
+        if (c.sometimes(32) && t.find("thermostat = ") == std::string::npos)
+            keys +=
+                "thermostat = \"andersen\"\ntemperature = " + toml_number(c.geometric(0.01, 10.0)) +
+                "\nthermostat_rate = " + toml_number(c.geometric(1e-3, 10.0)) + "\n";
+        if (c.sometimes(32))
+            keys += "driving = \"white_noise\"\ndriving_rate = " +
+                    toml_number(c.geometric(1e-3, 10.0)) +
+                    "\ndriving_strength = " + toml_number(c.geometric(1e-4, 1.0)) + "\n";
+    }
+    const std::size_t at = t.find(table);
+    if (at == std::string::npos) return;
+    t.insert(at + table.size(), keys);
+    if (dynamics == "event" && walled >= 0 && c.sometimes(48)) {
+        std::string wall_table = "[event.moving_wall]\naxis = \"";
+        wall_table += "xyz"[walled];
+        wall_table += c.sometimes(128) ? "\"\nside = \"upper\"\n" : "\"\n";
+        if (c.sometimes(96))
+            wall_table += "speed = " + toml_number(c.geometric(1e-3, 5.0)) + "\n";
+        else
+            wall_table += "amplitude = " + toml_number(c.geometric(1e-3, 2.0)) +
+                          "\nfrequency = " + toml_number(c.geometric(1e-2, 20.0)) + "\n";
+        // (a sub-table after its parent's keys: before the next table)
+        const std::size_t next = t.find("\n[", at + table.size());
+        t.insert(next == std::string::npos ? t.size() : next + 1, wall_table);
+    }
+}
+
 // The config (TOML text) that the bytes choose.
 inline std::string run_config_text(const std::uint8_t* data, std::size_t size) {
     using namespace detail;
@@ -475,6 +570,8 @@ inline std::string run_config_text(const std::uint8_t* data, std::size_t size) {
             t.insert(t.find("[event]\n") + 8, thermostat);
         }
     }
+    add_ensembles(c, dynamics, t);
+    add_hard_drives(c, dynamics, wall, t);
     return t;
 }
 
@@ -484,11 +581,13 @@ inline std::string run_config_text(const std::uint8_t* data, std::size_t size) {
 // outside the box, a broken list, a collapse without inelastic collisions) is a finding.
 inline bool physical_stop(const std::string& message, const RunConfig& config) {
     static const char* const allowed[] = {
-        "in one step, more than",          // soft blow-up: a move past the skin
-        "got a non-finite displacement",   // soft blow-up
-        "radii in one step of dt",         // stepped: a particle too fast for dt
-        "collisions in one step",          // stepped: packed too tightly for dt
-        "have grown to a contact distance" // event growth: the box became too small
+        "in one step, more than",                // soft blow-up: a move past the skin
+        "got a non-finite displacement",         // soft blow-up
+        "radii in one step of dt",               // stepped: a particle too fast for dt
+        "collisions in one step",                // stepped: packed too tightly for dt
+        "have grown to a contact distance",      // event growth: the box became too small
+        "the box changed by more than",          // [barostat]: far from its pressure for its tau
+        "within a diameter of the opposite wall" // a driven wall at the end of its stroke
     };
     const auto has = [&](const char* a) { return message.find(a) != std::string::npos; };
     // events piling up at one instant: inelastic collapse (which needs inelastic

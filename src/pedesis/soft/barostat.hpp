@@ -151,14 +151,15 @@ template <int D> class MtkIntegrator final : public Integrator<D> {
             mobile_ += 1.0;
             if (bath_) bath_T += bath_->T.at(s.p.species[i], table.size());
         }
-        if (!(mobile_ > 0.0)) throw RunError("barostat: every particle is fixed (infinite mass)");
+        // (config errors, though only the first step sees them: exit 2)
+        if (!(mobile_ > 0.0)) throw InputError("barostat: every particle is fixed (infinite mass)");
         const double freedom = D * mobile_;
         const double T = bath_ ? bath_T / mobile_ : total_twice_kinetic(s) / freedom;
         if (!(T > 0.0))
-            throw RunError("barostat: its mass W = N_f T tau^2 needs a temperature, and " +
-                           std::string(bath_ ? "langevin's T is 0"
-                                             : "the particles are at rest: give them velocities "
-                                               "([initial] velocities)"));
+            throw InputError("barostat: its mass W = N_f T tau^2 needs a temperature, and " +
+                             std::string(bath_ ? "langevin's T is 0"
+                                               : "the particles are at rest: give them velocities "
+                                                 "([initial] velocities)"));
         mass_ = freedom * T * tau_ * tau_;
         virial_ = virial_of_();
         volume_ = s.box.volume();
