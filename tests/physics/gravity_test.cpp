@@ -15,6 +15,7 @@
 // range, so the slope's standard error is ~0.3%: tolerance 3% (measured: 0.987, the excluded
 // volume's lift near the floor included).
 #include "pedesis/event/event_engine.hpp"
+#include "support/driven_gases.hpp"
 #include "support/falling_gas.hpp"
 
 #include <gtest/gtest.h>
@@ -86,18 +87,7 @@ TEST(Gravity, BarometricProfileAndTheFloorCarriesTheWeight) {
     // T = 2 <K> / f, f = 2 N - 1 (the momentum along the periodic x is kept)
     const double T = 2.0 * kinetic_sum / snapshots / (2.0 * 200 - 1);
     // weighted least squares of ln n against the bin's centre, weights = counts
-    double sw = 0, sy = 0, syy = 0, sl = 0, syl = 0;
-    for (std::size_t b = 0; b < counts.size(); ++b) {
-        const double y = (static_cast<double>(b) + 0.5) * bin;
-        if (y < 1.0 * T || y > 6.0 * T || counts[b] < 10) continue;
-        const double w = counts[b], l = std::log(counts[b]);
-        sw += w;
-        sy += w * y;
-        syy += w * y * y;
-        sl += w * l;
-        syl += w * y * l;
-    }
-    const double slope = (sw * syl - sy * sl) / (sw * syy - sy * sy);
+    const double slope = log_slope(counts, bin, 1.0 * T, 6.0 * T);
     const double expected = -1.0 / T; // -m g / T
     std::printf("[gravity] T = %.4f, fitted slope %.4f, -m g / T = %.4f (ratio %.4f)\n", T, slope,
                 expected, slope / expected);
