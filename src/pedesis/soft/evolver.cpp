@@ -127,7 +127,13 @@ template <int D> double Evolver<D>::list_shear_offset() const {
 template <int D>
 void Evolver<D>::restore_list(const std::vector<Vec<D>>& reference, std::uint64_t builds,
                               double shear_offset, const std::vector<double>& build_lengths) {
-    if (build_lengths.size() == static_cast<std::size_t>(D) && !domain_) {
+    // (only a barostat's box differs from the build's: a box of the present lengths is the
+    // state's own, with its shear)
+    bool other_box = false;
+    if (build_lengths.size() == static_cast<std::size_t>(D) && !domain_)
+        for (int a = 0; a < D; ++a)
+            other_box = other_box || build_lengths[static_cast<std::size_t>(a)] != s_.box.length(a);
+    if (other_box) {
         Vec<D> lengths;
         std::array<bool, D> periodic{};
         for (int a = 0; a < D; ++a) {
