@@ -8,8 +8,8 @@ runs shorter versions in under 2 minutes on 2 cores; the full suite takes under 
     python3 -m pedesis.validate --quick --out runs/validate
     pedesis validate --quick            # the same, through the CLI
 """
-from .cases import (active, active_models, granular, hard, liquid, sedimentation, shear,
-                    thermostats, transport)
+from .cases import (active, active_models, granular, gravity, hard, liquid, sedimentation,
+                    shear, thermostats, transport)
 from .checks import CaseError, CaseResult, Check
 
 # (name, function, runs in quick mode too); in this order in the table
@@ -21,6 +21,7 @@ CASES = (
     ("equipartition", granular.equipartition, True),
     ("haff", granular.haff, True),
     ("inelastic_mixture", granular.inelastic_mixture, True),
+    ("barometric_gas", gravity.barometric_gas, True),
     ("free_abp", active.free_abp, True),
     ("mips", active.mips, True),
     ("abp_walls", active_models.abp_walls, True),
