@@ -64,6 +64,12 @@ TEST_F(Resume, AFinishedRunHasNothingToDoAndStaysAsItWas) {
         << r.output;
     EXPECT_EQ(read("done/log.csv"), log);
     EXPECT_FALSE(fs::exists(dir / "done" / "pedesis.lock"));
+    // how a run reports is not where it ends: still nothing to do (it went on before)
+    const CliResult quiet =
+        run_pedesis("run run.toml --out done --resume --set output.progress=true", dir, 120);
+    EXPECT_EQ(quiet.exit_code, 0) << quiet.output;
+    EXPECT_NE(quiet.output.find("nothing to do"), std::string::npos) << quiet.output;
+    EXPECT_EQ(read("done/log.csv"), log);
 }
 
 TEST_F(Resume, AnEmptyOrAbsentDirectoryStartsTheRun) {
