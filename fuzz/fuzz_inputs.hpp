@@ -84,6 +84,26 @@ inline void checkpoint_input(const std::uint8_t* data, std::size_t size) {
         "dimension = 2\nseed = 4\n[box]\nlength = 20.0\nshear_rate = 0.5\n[[species]]\n"
         "name = \"A\"\ncount = 20\nradius = 0.5\n[event]\nthermostat = \"rescale\"\n"
         "temperature = 1.0\n[run]\ntime = 2.0\n[output]\nprogress = false\nformats = []\n",
+        // event under gravity on a vibrated floor, Andersen thermostat, white-noise kicks
+        "dimension = 2\nseed = 5\n[box]\nlength = 20.0\nboundary = [\"periodic\", \"wall\"]\n"
+        "[[species]]\nname = \"A\"\ncount = 20\nradius = 0.5\n[event]\ngravity = [0.0, -1.0]\n"
+        "thermostat = \"andersen\"\ntemperature = 1.0\nthermostat_rate = 0.5\n"
+        "driving = \"white_noise\"\ndriving_rate = 0.5\ndriving_strength = 0.1\n"
+        "[event.moving_wall]\naxis = \"y\"\namplitude = 0.2\nfrequency = 1.0\n[run]\n"
+        "time = 2.0\n[output]\nprogress = false\nformats = []\n",
+        // soft: Nose-Hoover chains
+        "dimension = 2\ndynamics = \"nose_hoover\"\nseed = 1\n[box]\nlength = 20.0\n[[species]]\n"
+        "name = \"A\"\ncount = 20\nradius = 1.0\n[initial]\npositions = \"random\"\nvelocities = "
+        "\"maxwell_boltzmann\"\ntemperature = 1.0\n[[force]]\nname = \"harmonic\"\nk = 10.0\n"
+        "[[integrator]]\nname = \"nose_hoover\"\nT = 1.0\ntau = 0.5\n[run]\nsteps = 40\n"
+        "dt = 0.01\n[output]\nprogress = false\nformats = []\n",
+        // soft: the MTK barostat beside langevin
+        "dimension = 2\ndynamics = \"langevin\"\nseed = 1\n[box]\nlength = 20.0\n[[species]]\n"
+        "name = \"A\"\ncount = 20\nradius = 1.0\n[initial]\npositions = \"random\"\nvelocities = "
+        "\"maxwell_boltzmann\"\ntemperature = 1.0\n[[force]]\nname = \"harmonic\"\nk = 10.0\n"
+        "[[integrator]]\nname = \"langevin\"\nT = 1.0\ngamma = 1.0\n[barostat]\npressure = "
+        "0.1\ntau = 1.0\n[run]\nsteps = 40\ndt = 0.01\n[output]\nprogress = false\n"
+        "formats = []\n",
     };
     if (size == 0) return;
     const auto dir = std::filesystem::temp_directory_path() /
@@ -97,7 +117,7 @@ inline void checkpoint_input(const std::uint8_t* data, std::size_t size) {
                          static_cast<std::streamsize>(size - 1));
         file.commit();
     }
-    const RunConfig c = parse_run_config(configs[data[0] % 4], "fuzz.toml", false);
+    const RunConfig c = parse_run_config(configs[data[0] % std::size(configs)], "fuzz.toml", false);
     RunOptions o;
     o.out_dir = dir / "out"; // never written: the loaders run before the run directory
     o.restart = path;
