@@ -591,11 +591,12 @@ inline bool physical_stop(const std::string& message, const RunConfig& config) {
     };
     const auto has = [&](const char* a) { return message.find(a) != std::string::npos; };
     // events piling up at one instant: inelastic collapse (which needs inelastic
-    // collisions), or growing particles that have jammed; elastic particles that do not
-    // grow never should
+    // collisions), growing particles that have jammed, or a particle at rest on a floor
+    // under gravity (a lattice placed on it: the stop's message says so); elastic
+    // particles that do not grow or fall never should
     if (has("time stopped advancing"))
         return config.restitution < 1.0 || config.wall_restitution < 1.0 ||
-               config.growth_rate > 0.0;
+               config.growth_rate > 0.0 || !config.gravity.empty();
     return std::any_of(std::begin(allowed), std::end(allowed), has);
 }
 
