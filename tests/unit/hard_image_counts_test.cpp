@@ -153,9 +153,10 @@ TEST(HardImageCounts, SteppedGasPathsStayContinuousThroughCollisions) {
 
 // A version-5 event checkpoint (version-3 stepped) ends with the image counts (a u64
 // count and n D int32), a flag and the flux moments, and a later version (`saved`) with
-// `later` bytes more (the shear state: event 6, five 8-byte numbers; stepped 4, the
-// rate): without them all, and with the version before the counts, it is the file an
-// older pedesis wrote.
+// `later` bytes more (the shear state: event 6, five 8-byte numbers; event 7, gravity's
+// D components, the two next stochastic event times and the four driving records, 8
+// bytes each; stepped 4, the rate): without them all, and with the version before the
+// counts, it is the file an older pedesis wrote.
 constexpr std::size_t moments_bytes = 1 + sizeof(FluxMoments<3>);
 std::string older_version(std::string bytes, std::uint32_t saved, std::size_t later,
                           std::uint32_t version, std::size_t n) {
@@ -182,7 +183,7 @@ TEST(HardImageCounts, CheckpointsCarryTheCountsAndOlderOnesLoadWithNone) {
     e.save(out);
     std::istringstream in(out.str());
     EventEngine<3> same = EventEngine<3>::load(in, EventParams{});
-    std::istringstream old_in(older_version(out.str(), 6, 40, 4, p.size()));
+    std::istringstream old_in(older_version(out.str(), 7, 40 + (3 + 2 + 4) * 8, 4, p.size()));
     EventEngine<3> old = EventEngine<3>::load(old_in, EventParams{});
     limits.time = 6.0;
     e.run(limits);
