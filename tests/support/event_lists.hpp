@@ -1,7 +1,7 @@
 #pragma once
 // The event engine's neighbour lists, read back from its checkpoint (EventEngine::save,
 // the one public view of them): the list centres, the skin and every particle's list.
-// The reader follows the field order of EventEngine::save for checkpoint version 7 up to
+// The reader follows the field order of EventEngine::save for checkpoint version 8 up to
 // the lists (the image counts, flux moments and shear state come after them); a new
 // version fails here with the engine's own "unsupported version" message, which means
 // this reader must follow the change.
@@ -31,7 +31,7 @@ template <int D> EventLists<D> read_event_lists(const EventEngine<D>& engine) {
     std::stringstream buf;
     engine.save(buf);
     EventLists<D> out;
-    binary::get_header(buf, 0x4b43455344455045ull, 7, D, "event");
+    binary::get_header(buf, 0x4b43455344455045ull, 8, D, "event");
     get(buf, out.species_table);
     get(buf, out.box);
     double now = 0.0, kinetic = 0.0, kinetic_exact = 0.0;

@@ -183,7 +183,7 @@ TEST(HardImageCounts, CheckpointsCarryTheCountsAndOlderOnesLoadWithNone) {
     e.save(out);
     std::istringstream in(out.str());
     EventEngine<3> same = EventEngine<3>::load(in, EventParams{});
-    std::istringstream old_in(older_version(out.str(), 7, 40 + (3 + 2 + 4) * 8, 4, p.size()));
+    std::istringstream old_in(older_version(out.str(), 8, 40 + (3 + 2 + 4 + 2) * 8, 4, p.size()));
     EventEngine<3> old = EventEngine<3>::load(old_in, EventParams{});
     limits.time = 6.0;
     e.run(limits);
