@@ -22,6 +22,7 @@
 #include <cstring>
 #include <ctime>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numbers>
 
@@ -44,6 +45,7 @@ struct BenchAbpOptions {
     std::uint64_t sort_interval = 200;
     std::string device = "cpu";
     std::string model = "abp"; // or "lj": in.lj's Lennard-Jones liquid
+    Precision precision = Precision::full;
 };
 
 // The ABP tutorial's model (Session 2), scaled to N particles at its number density.
@@ -239,7 +241,13 @@ void time_and_report(SoftState<D>& s, Evolver<D>& e, const BenchAbpOptions& o, d
                    "max_rss_bytes_per_particle: {:.1f}\n",
                    state / nd, list / nd, max_rss_bytes() / nd);
     }
-    if (!e.device()) fmt::print("cpu_kernels: {}\n", simd_name(simd_level()));
+    if (!e.device()) {
+        fmt::print("cpu_kernels: {}\n", simd_name(simd_level()));
+        bool mixed = true;
+        for (const auto& f : e.forces())
+            if (const auto p = f->rows_precision(s)) mixed = mixed && *p == Precision::mixed;
+        fmt::print("precision: {}\n", precision_name(mixed ? o.precision : Precision::full));
+    }
     fmt::print("state_checksum: {:016x}\n", state_checksum(s));
     fmt::print("particle_steps_per_second: {:.0f}\n", particle_steps / seconds);
     if (!e.device()) fmt::print("bytes_per_particle: {:.1f}\n", (state + list) / nd);
@@ -251,6 +259,7 @@ void run_lj(const BenchAbpOptions& o) {
     omp_set_num_threads(o.threads);
     SoftState<3> s;
     build_lj(s, o.n, o.seed);
+    s.pair_precision = o.precision;
     Evolver<3> e(s, lj_skin);
     e.add_force(std::make_unique<PairForce<3, LjPair>>("lj", LjPair{1.0, 1.0, 2.5, false}));
     e.add_integrator(std::make_unique<VelocityVerletIntegrator<3>>());
@@ -258,6 +267,9 @@ void run_lj(const BenchAbpOptions& o) {
     // as a fresh `pedesis run` does: the first sort interval would otherwise run with
     // the neighbour rows pointing at memory in placement order
     e.sort_storage_at_start();
+    if (o.device == "gpu" && o.precision == Precision::mixed)
+        throw InputError("bench abp: --precision mixed runs on the CPU (the GPU path computes in "
+                         "double only)");
     if (o.device == "gpu") e.set_device(make_gpu_stepper<3>(s, e, {}));
     fmt::print("bench abp --model lj: dim 3 N {} density {} L {:.4f} threads {} device {}\n",
                s.size(), lj_density, s.box.length(0), o.threads, o.device);
@@ -288,6 +300,7 @@ template <int D> void run_bench(const BenchAbpOptions& o) {
 
     SoftState<D> s;
     build_system(s, o, L);
+    s.pair_precision = o.precision;
     Evolver<D> e(s, o.skin);
     e.add_force(std::make_unique<PairForce<D, HarmonicPair>>("harmonic",
                                                              HarmonicPair{k_harmonic, a_harmonic}));
@@ -300,6 +313,9 @@ template <int D> void run_bench(const BenchAbpOptions& o) {
     // as a fresh `pedesis run` does: the first sort interval would otherwise run with
     // the neighbour rows pointing at memory in placement order
     e.sort_storage_at_start();
+    if (o.device == "gpu" && o.precision == Precision::mixed)
+        throw InputError("bench abp: --precision mixed runs on the CPU (the GPU path computes in "
+                         "double only)");
     if (o.device == "gpu") e.set_device(make_gpu_stepper<D>(s, e, {}));
 
     fmt::print("bench abp: dim {} N {} density {} L {:.4f} threads {} device {}\n", D, o.n, density,
@@ -330,6 +346,10 @@ void add_bench_abp(CLI::App& bench) {
     cmd->add_option("--skin", o->skin, "Neighbour-list skin");
     cmd->add_option("--sort-interval", o->sort_interval,
                     "Steps between space-filling-curve sorts (0: never)");
+    cmd->add_option("--precision", o->precision,
+                    "Pair math: double, or mixed (float pair rows, double integration)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, Precision>{
+            {"double", Precision::full}, {"mixed", Precision::mixed}}));
     cmd->add_option("--device", o->device, "Where to step: cpu or gpu (docs/gpu.md)")
         ->check(CLI::IsMember({"cpu", "gpu"}));
     cmd->add_option("--model", o->model,

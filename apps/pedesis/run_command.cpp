@@ -44,6 +44,7 @@ struct RunArgs {
     int view_port = 8765;
     std::string steering;          // a record to replay
     std::vector<std::string> sets; // --set KEY=VALUE
+    std::string precision;         // --precision: one more --set
 };
 
 // 128 random bits, in hex: the token a page must show to change a run.
@@ -125,6 +126,10 @@ void add_run_command(CLI::App& app) {
                     "Where a soft-engine run steps: cpu or gpu (default: the config's [run] "
                     "device, else cpu; docs/gpu.md)")
         ->check(CLI::IsMember({"cpu", "gpu"}));
+    cmd->add_option("--precision", a->precision,
+                    "Pair math of a soft-engine run: double or mixed (float pair rows, double "
+                    "integration); the same as --set precision=VALUE, recorded as one")
+        ->check(CLI::IsMember({"double", "mixed"}));
     auto* restart = cmd->add_option("--restart", a->restart,
                                     "Continue exactly from a checkpoint.bin of an earlier run");
     cmd->add_flag("--resume", a->resume,
@@ -147,6 +152,7 @@ void add_run_command(CLI::App& app) {
         if (a->config.empty()) throw CLI::RequiredError("config");
         // (first: under mpirun, only process 0 may tell what is wrong with the config)
         const std::unique_ptr<Communicator> comm = world_communicator();
+        if (!a->precision.empty()) a->sets.push_back("precision=\"" + a->precision + "\"");
         std::optional<ConfigWithSets> with_sets;
         if (!a->sets.empty()) with_sets.emplace(a->config, a->sets);
         const RunConfig config = with_sets ? with_sets->read() : load_run_config(a->config);
@@ -172,6 +178,9 @@ void add_run_command(CLI::App& app) {
         if (a->resume && (a->view || !a->steering.empty()))
             throw InputError("--resume continues runs without steering; --view and --steering "
                              "cannot be given with it");
+        // A signal during set-up ends the process at once (nothing there to close), and
+        // removes the lock taken below first: caught from before the lock is taken.
+        InterruptGuard guard(OutsideCleanStops::end_process);
         // one writer per run directory (process 0's lock speaks for an MPI run)
         std::unique_ptr<RunDirectoryLock> lock;
         on_process_zero(comm.get(), [&] { lock = std::make_unique<RunDirectoryLock>(o.out_dir); });
@@ -195,8 +204,6 @@ void add_run_command(CLI::App& app) {
                 o.resume_marks = plan.marks;
             }
         }
-        // a signal during set-up ends the process at once (nothing there to close)
-        InterruptGuard guard(OutsideCleanStops::end_process);
         const std::unique_ptr<Run> run = [&] {
             try {
                 return make_run(config, o, console);

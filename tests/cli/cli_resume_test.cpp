@@ -26,13 +26,31 @@ class Resume : public ScratchDir {
     pid_t start_until_running(const std::vector<std::string>& args, const std::string& out) {
         const pid_t pid =
             start_pedesis(dir, dir / ("console_" + std::to_string(++runs_) + ".txt"), args);
-        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-        while (std::chrono::steady_clock::now() < give_up) {
+        wait_until([&] {
             const std::string log = file_text(dir / out / "log.csv.part");
-            if (std::count(log.begin(), log.end(), '\n') >= 2) break;
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        }
+            return std::count(log.begin(), log.end(), '\n') >= 2;
+        });
         return pid;
+    }
+
+    // Starts a resume of `out` and waits until it has written a checkpoint of its own (it
+    // is in its loop: the rows it found were the dead run's, and its set-up, however slow
+    // under a sanitizer, is over), at most 60 s.
+    pid_t start_resume_until_running(const std::vector<std::string>& args, const std::string& out) {
+        const std::string found = file_text(dir / out / "checkpoint.bin");
+        const pid_t pid =
+            start_pedesis(dir, dir / ("console_" + std::to_string(++runs_) + ".txt"), args);
+        wait_until([&] {
+            const std::string now = file_text(dir / out / "checkpoint.bin");
+            return !now.empty() && now != found;
+        });
+        return pid;
+    }
+
+    template <class Done> static void wait_until(Done done) {
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        while (std::chrono::steady_clock::now() < give_up && !done())
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
 
     // The exit code, or 128 + the signal that ended it.
@@ -132,7 +150,7 @@ TEST_F(Resume, OneWriterPerRunDirectoryAndADeadOneDoesNotBlock) {
     kill(first, SIGKILL);
     waitpid(first, nullptr, 0);
     EXPECT_TRUE(fs::exists(dir / "busy" / "pedesis.lock"));
-    const pid_t again = start_until_running(
+    const pid_t again = start_resume_until_running(
         {"run", "run.toml", "--out", "busy", "--resume", "--set", "run.time=1e9"}, "busy");
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
     kill(again, SIGTERM);

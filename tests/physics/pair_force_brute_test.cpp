@@ -30,17 +30,8 @@ void check_against_brute_force(SoftState<D> s, const Pair& pair, double skin,
 
     std::size_t interacting = 0, bad = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
-        Vec<D> f{};
-        double scale = 0.0;
-        for (std::size_t j = 0; j < s.size(); ++j) {
-            if (j == i) continue;
-            const Vec<D> d = s.box.minimum_image(s.p.position[i] - s.p.position[j]);
-            double f_over_r, energy;
-            if (!pair.eval(norm2(d), s.p.radius(i) + s.p.radius(j), f_over_r, energy)) continue;
-            f += f_over_r * d;
-            scale += std::abs(f_over_r) * norm(d);
-            ++interacting;
-        }
+        double scale;
+        const Vec<D> f = test::brute_force_on(s, pair, i, scale, interacting);
         bad += !(norm(s.force[i] - f) <= 1e-12 * scale);
     }
     EXPECT_GT(interacting, s.size()) << "too few pairs in range to test anything";

@@ -23,6 +23,25 @@ SoftState<D> pair_case_system(std::size_t n, double rho, bool two_radii, std::ui
     return s;
 }
 
+// The brute-force force on particle i (every other particle by minimum image) and its
+// scale, the sum of its pairs' |F|; adds the pairs in range to `interacting`.
+template <int D, class Pair>
+Vec<D> brute_force_on(const SoftState<D>& s, const Pair& pair, std::size_t i, double& scale,
+                      std::size_t& interacting) {
+    Vec<D> f{};
+    scale = 0.0;
+    for (std::size_t j = 0; j < s.size(); ++j) {
+        if (j == i) continue;
+        const Vec<D> d = s.box.minimum_image(s.p.position[i] - s.p.position[j]);
+        double f_over_r, energy;
+        if (!pair.eval(norm2(d), s.p.radius(i) + s.p.radius(j), f_over_r, energy)) continue;
+        f += f_over_r * d;
+        scale += std::abs(f_over_r) * norm(d);
+        ++interacting;
+    }
+    return f;
+}
+
 // check(system, pair, skin, name) for each case.
 template <int D, class Check> void for_each_pair_case(Check&& check) {
     const std::size_t n = D == 2 ? 900 : 1000;

@@ -12,10 +12,20 @@ namespace pedesis {
 
 using lanes4 = double __attribute__((vector_size(32)));
 using mask4 = std::int64_t __attribute__((vector_size(32)));
+// Eight floats (the mixed-precision pair rows, soft/pair_rows_mixed.hpp), four of them,
+// and the mask of eight.
+using lanes8f = float __attribute__((vector_size(32)));
+using lanes4f = float __attribute__((vector_size(16)));
+using mask8 = std::int32_t __attribute__((vector_size(32)));
 
 [[gnu::always_inline]] inline lanes4 lane_sqrt(lanes4 x) {
     lanes4 r;
     for (int l = 0; l < 4; ++l) r[l] = std::sqrt(x[l]);
+    return r;
+}
+[[gnu::always_inline]] inline lanes8f lane_sqrt(lanes8f x) {
+    lanes8f r;
+    for (int l = 0; l < 8; ++l) r[l] = std::sqrt(x[l]);
     return r;
 }
 
@@ -23,6 +33,10 @@ using mask4 = std::int64_t __attribute__((vector_size(32)));
 [[gnu::always_inline]] inline lanes4 select(mask4 m, lanes4 yes, lanes4 no) {
     return reinterpret_cast<lanes4>((reinterpret_cast<mask4>(yes) & m) |
                                     (reinterpret_cast<mask4>(no) & ~m));
+}
+[[gnu::always_inline]] inline lanes8f select(mask8 m, lanes8f yes, lanes8f no) {
+    return reinterpret_cast<lanes8f>((reinterpret_cast<mask8>(yes) & m) |
+                                     (reinterpret_cast<mask8>(no) & ~m));
 }
 
 } // namespace pedesis

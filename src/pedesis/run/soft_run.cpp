@@ -139,6 +139,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             for (std::size_t i = 0; i < state_.size(); ++i)
                 book_.start[state_.p.tag[i]] = state_.unwrapped(i);
         }
+        state_.pair_precision = c_.precision;
         check_walls(); // (a restored state has its box from here on)
         check_barostat();
         check_active_ou();
@@ -161,6 +162,10 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
             evolver_->set_domain(domain_.get());
         }
         if (on_gpu()) {
+            if (c_.precision == Precision::mixed)
+                throw InputError(c_.precision_where +
+                                 " = \"mixed\" runs on the CPU (the GPU path computes in double "
+                                 "only): set device = \"cpu\" or precision = \"double\"");
             if (domain_)
                 throw InputError((o_.device || c_.device_where.empty() ? c_.file + ": device"
                                                                        : c_.device_where) +
@@ -313,7 +318,12 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         if (const auto* device = evolver_->device())
             console_ << fmt::format("  on the GPU: {}\n", device->description());
         else
-            console_ << fmt::format("  CPU kernels: {}\n", simd_name(simd_level()));
+            console_ << fmt::format("  CPU kernels: {}, pair math in {}{}\n",
+                                    simd_name(simd_level()), precision_name(pair_precision()),
+                                    c_.precision == pair_precision()
+                                        ? ""
+                                        : " (precision = \"mixed\" needs one radius and one "
+                                          "evaluator per force, and the avx2 or avx512 kernels)");
         if (state_.box.sheared())
             console_ << fmt::format("  Lees–Edwards shear at rate {:g}: flow along x, gradient "
                                     "along y, velocities peculiar\n",
@@ -360,6 +370,7 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
         j["dynamics"] = c_.dynamics;
         j["device"] = on_gpu() ? "gpu" : "cpu";
         if (!on_gpu()) j["cpu_kernels"] = simd_name(simd_level());
+        j["precision"] = precision_name(pair_precision());
         j["particles"] = particles_;
         j["steps"] = state_.step;
         j["time"] = state_.time;
@@ -788,6 +799,17 @@ template <int D> class SoftRunEngine final : public RunEngine<D> {
 
     bool inertial() const { return overdamped_ == nullptr; }
     bool on_gpu() const { return o_.device.value_or(c_.device) == "gpu"; }
+    // The precision the pair math runs in: mixed where every pair force's rows are
+    // (PairForce::rows_precision), double otherwise.
+    Precision pair_precision() const {
+        bool mixed = c_.precision == Precision::mixed && !on_gpu(), any = false;
+        for (const auto& f : evolver_->forces())
+            if (const auto p = f->rows_precision(state_)) {
+                mixed = mixed && *p == Precision::mixed;
+                any = true;
+            }
+        return mixed && any ? Precision::mixed : Precision::full;
+    }
 
     // Whether this process writes and prints (process 0, or the only one).
     bool writer() const { return !domain_ || o_.comm->rank() == 0; }

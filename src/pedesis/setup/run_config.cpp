@@ -8,9 +8,9 @@
 #include "pedesis/io/frame_writers.hpp"
 #include "pedesis/observe/quantities.hpp"
 #include "pedesis/setup/hard_driving_config.hpp"
-#include "pedesis/setup/moving_wall_config.hpp"
 #include "pedesis/setup/lattice.hpp"
 #include "pedesis/setup/minimize_config.hpp"
+#include "pedesis/setup/moving_wall_config.hpp"
 #include "pedesis/setup/velocities.hpp"
 #include "pedesis/soft/integrator_set.hpp"
 #include "pedesis/soft/plugin_registry.hpp"
@@ -425,6 +425,14 @@ void read_soft_sections(const toml::table& doc, ConfigTable& root, RunConfig& c)
         c.sort_every = read_count(*nl, "sort_every", c.sort_every, false);
         nl->finish();
     }
+    if (auto word = root.string("precision")) {
+        const auto precision = precision_named(*word);
+        if (!precision)
+            throw InputError(root.where("precision") + ": must be \"double\" or \"mixed\", not \"" +
+                             *word + "\"");
+        c.precision = *precision;
+        c.precision_where = root.where("precision");
+    }
     for (auto& t : root.tables("force")) c.forces.push_back(read_plugin(t, PluginKind::force));
     for (auto& t : root.tables("torque")) c.torques.push_back(read_plugin(t, PluginKind::torque));
     for (auto& t : root.tables("integrator"))
@@ -552,6 +560,8 @@ constexpr EngineKey engine_keys[] = {
     {"run.dt", "brownian, langevin and nve", nullptr,
      "the event engine has no time step; the stepped engine's is [stepped] dt"},
     {"run.device", "brownian, langevin and nve", nullptr, "the hard engines run on the CPU"},
+    {"precision", "brownian, langevin and nve", nullptr,
+     "the hard engines compute in double, exactly"},
     {"output.log_every", "brownian, langevin and nve", nullptr,
      "output.log_interval (in time units)"},
     {"output.snapshot_every", "brownian, langevin and nve", nullptr,

@@ -1,8 +1,9 @@
 #pragma once
 // The contents of a run's TOML config, validated. Every key is documented in
 // docs/config.md; unknown keys are errors.
-#include "pedesis/setup/barostat_config.hpp"
+#include "pedesis/core/precision.hpp"
 #include "pedesis/event/moving_wall.hpp"
+#include "pedesis/setup/barostat_config.hpp"
 #include "pedesis/setup/transport_config.hpp"
 #include "pedesis/soft/fire_params.hpp"
 #include "pedesis/soft/plugin_spec.hpp"
@@ -112,9 +113,11 @@ struct RunConfig {
     std::vector<PluginSpec> forces, torques, integrators;
     double list_r_cut = 0.0; // 0: the largest interaction range
     double list_skin = 0.5;
-    std::uint64_t sort_every = 500; // steps between space-filling-curve sorts (0: never)
-    std::string device = "cpu";     // soft engines: "cpu" or "gpu" (gpu/gpu_stepper.hpp)
-    std::string device_where;       // of [run] device if given, for messages
+    std::uint64_t sort_every = 500;        // steps between space-filling-curve sorts (0: never)
+    std::string device = "cpu";            // soft engines: "cpu" or "gpu" (gpu/gpu_stepper.hpp)
+    std::string device_where;              // of [run] device if given, for messages
+    Precision precision = Precision::full; // the pair rows' (core/precision.hpp)
+    std::string precision_where;           // of precision if given, for messages
     std::uint64_t steps = 0;
     double dt = 0.0; // also the time step of the stepped engine
     std::uint64_t log_every = 100;

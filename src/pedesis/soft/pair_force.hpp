@@ -9,6 +9,7 @@
 // radii too (one species, the common case) the loop takes one evaluator and never reads
 // a neighbour's species.
 #include "pedesis/soft/pair_rows.hpp"
+#include "pedesis/soft/pair_rows_mixed.hpp"
 #include "pedesis/soft/plugins.hpp"
 
 #include <algorithm>
@@ -55,15 +56,19 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
     }
 
     void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const override {
-        const auto& table = s.p.species_table;
-        check_species(table.size());
-        bool uniform = true;
-        for (const auto& sp : table) uniform = uniform && sp.radius == table[0].radius;
-        for (const Pair& p : pairs_) uniform = uniform && p == pairs_[0];
-        if (uniform)
+        check_species(s.p.species_table.size());
+        if (uniform(s))
             add_rows<true>(s, nl);
         else
             add_rows<false>(s, nl);
+    }
+
+    // Mixed where asked and where there are mixed rows: one radius and one evaluator,
+    // with the AVX2 or AVX-512 set.
+    std::optional<Precision> rows_precision(const SoftState<D>& s) const override {
+        const bool mixed = s.pair_precision == Precision::mixed && uniform(s) &&
+                           mixed_pair_rows_for<D, Pair>(simd_level()) != nullptr;
+        return mixed ? Precision::mixed : Precision::full;
     }
 
     // Sum over species pairs of N_a N_b / (2 V) times the pair's integrals beyond its
@@ -148,6 +153,14 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
             in.inner[a] = s.box.periodic(a) ? s.box.hi(a) - nl.image_free_margin()
                                             : std::numeric_limits<double>::infinity();
         const SimdLevel level = simd_level();
+        if constexpr (Uniform)
+            if (s.pair_precision == Precision::mixed)
+                if (const auto mixed = mixed_pair_rows_for<D, Pair>(level)) {
+                    const MixedRowsInput<D, Pair> m = pad_mixed(s, in);
+                    nl.for_each_chunk([&](std::span<const std::uint32_t> c) { mixed(m, c); });
+                    add_mixed(s);
+                    return;
+                }
         const auto rows = pair_rows_for<D, Pair, Uniform>(level);
         const bool padded = padded_rows<D> && Uniform && level != SimdLevel::sse2;
         if (padded) pad(s, in);
@@ -179,6 +192,36 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
             for (int a = 0; a < D; ++a) s.force[i][a] = force4_[i].c[a];
     }
 
+    // The float copies the mixed rows work on: positions, and forces from zero, which
+    // add_mixed then adds to the state's (so that the rows' sums stay in their order).
+    MixedRowsInput<D, Pair> pad_mixed(const SoftState<D>& s,
+                                      const PairRowsInput<D, Pair>& in) const {
+        const auto n = static_cast<std::int64_t>(s.size());
+        position4f_.resize(s.size());
+        force4f_.resize(s.size());
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i)
+            for (int a = 0; a < 4; ++a) {
+                position4f_[i].c[a] = a < D ? static_cast<float>(s.p.position[i][a]) : 0.0f;
+                force4f_[i].c[a] = 0.0f;
+            }
+        return {&in, position4f_.data(), force4f_.data()};
+    }
+    void add_mixed(SoftState<D>& s) const {
+        const auto n = static_cast<std::int64_t>(s.size());
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i)
+            for (int a = 0; a < D; ++a) s.force[i][a] += static_cast<double>(force4f_[i].c[a]);
+    }
+
+    bool uniform(const SoftState<D>& s) const {
+        const auto& table = s.p.species_table;
+        bool same = true;
+        for (const auto& sp : table) same = same && sp.radius == table[0].radius;
+        for (const Pair& p : pairs_) same = same && p == pairs_[0];
+        return same;
+    }
+
     std::size_t index(std::size_t a, std::size_t b) const {
         return species_ == 1 ? 0 : a * species_ + b;
     }
@@ -193,6 +236,7 @@ template <int D, class Pair> class PairForce final : public ForceTerm<D> {
     std::size_t species_;
     // scratch for pad(): kept between evaluations so that a step allocates nothing
     mutable std::vector<Padded3> position4_, force4_;
+    mutable std::vector<Padded3f> position4f_, force4f_;
 };
 
 } // namespace pedesis

@@ -8,6 +8,7 @@
 #include "pedesis/core/host_device.hpp"
 
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 namespace pedesis {
@@ -15,18 +16,30 @@ namespace pedesis {
 // The evaluators are shared with the CUDA kernels (src/pedesis/gpu/): what a kernel calls
 // is PEDESIS_HD, and the header stays C++17.
 
+// The real type of T: T itself for a scalar, the element type of a SIMD vector. The
+// evaluators' parameters are doubles and enter the arithmetic converted to it, so that
+// the mixed-precision rows (soft/pair_rows_mixed.hpp) compute in float throughout; for
+// double the conversions are nothing and the bits are those of the plain expressions.
+template <class T, class = void> struct real_of { using type = T; };
+template <class T> struct real_of<T, std::void_t<decltype(std::declval<T>()[0])>> {
+    using type = std::decay_t<decltype(std::declval<T>()[0])>;
+};
+template <class T> using real_of_t = typename real_of<T>::type;
+
 // Lennard-Jones F/r = 24 eps (2 (s/r)^12 - (s/r)^6) / r^2, shared by wca and lj. One
 // division per pair (s^2 / r^2, then products): divisions are the slowest operation of
 // the pair loop. 24 eps / r^2 comes from (s/r)^2 beside (s/r)^4, so that four operations,
 // not seven, follow the division on the SIMD kernels' critical path (in.lj 1.05x).
-// T is double, or a vector of doubles in the CPU's SIMD kernels (soft/pair_rows.hpp).
+// T is double, or a vector of doubles or floats in the CPU's SIMD kernels
+// (soft/pair_rows.hpp, soft/pair_rows_mixed.hpp).
 template <class T> PEDESIS_HD_INLINE T lj_force_over_r(double epsilon, double s, T r2) {
+    using R = real_of_t<T>;
     const double s2 = s * s;
-    const T x2 = s2 / r2;
+    const T x2 = R(s2) / r2;
     const T x4 = x2 * x2;
-    const T scale = (24.0 * epsilon / s2) * x2; // 24 eps / r^2, beside x4
+    const T scale = R(24.0 * epsilon / s2) * x2; // 24 eps / r^2, beside x4
     const T x6 = x4 * x2;
-    return (2.0 * x6 - 1.0) * (scale * x6);
+    return (R(2.0) * x6 - R(1.0)) * (scale * x6);
 }
 
 // Harmonic repulsion of the ABP tutorial: F = k (a - r) r_hat for r <= a,
@@ -48,7 +61,8 @@ struct HarmonicPair {
     }
     // the same from the distance r (T: double or a SIMD vector of them)
     template <class T> PEDESIS_HD_INLINE T force_over_r_at(T r, double rsum) const {
-        return k * (range(rsum) - r) / r;
+        using R = real_of_t<T>;
+        return R(k) * (R(range(rsum)) - r) / r;
     }
     PEDESIS_HD bool eval(double r2, double rsum, double& f_over_r, double& energy) const {
         const double R = range(rsum);

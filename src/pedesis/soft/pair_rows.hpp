@@ -23,6 +23,7 @@
 #include <cstring>
 #include <limits>
 #include <span>
+#include <type_traits>
 
 namespace pedesis {
 
@@ -32,6 +33,12 @@ namespace pedesis {
 // lane extractions and stores for the forces) per neighbour.
 struct alignas(32) Padded3 {
     double c[4];
+};
+
+// A position or force as four floats (x y z 0; in 2D z is 0 too), for the mixed rows
+// (soft/pair_rows_mixed.hpp): one 16-byte load or store per neighbour.
+struct alignas(16) Padded3f {
+    float c[4];
 };
 
 // Whether the AVX2 and AVX-512 rows of one radius work on the padded copies (the one
@@ -144,13 +151,19 @@ template <int D, class Pair, bool Uniform>
     }
 }
 
-[[gnu::always_inline]] inline lanes4 load_padded(const Padded3& p) {
-    lanes4 v;
+// The vector of one padded record: four doubles, or four floats (the mixed rows).
+template <class Record>
+using record_lanes = std::conditional_t<std::is_same_v<Record, Padded3>, lanes4, lanes4f>;
+
+template <class Record>
+[[gnu::always_inline]] inline record_lanes<Record> load_padded(const Record& p) {
+    record_lanes<Record> v;
     std::memcpy(&v, p.c, sizeof v);
     return v;
 }
-[[gnu::always_inline]] inline void sub_padded(Padded3& p, lanes4 v) {
-    lanes4 now = load_padded(p);
+template <class Record>
+[[gnu::always_inline]] inline void sub_padded(Record& p, record_lanes<Record> v) {
+    record_lanes<Record> now = load_padded(p);
     now -= v;
     std::memcpy(p.c, &now, sizeof now);
 }
@@ -177,6 +190,16 @@ template <int D, class Pair, bool Uniform>
             __builtin_shufflevector(xy13, z13, 0, 1, 4, 5),
             __builtin_shufflevector(xy02, z02, 2, 3, 6, 7),
             __builtin_shufflevector(xy13, z13, 2, 3, 6, 7)};
+}
+
+// The first two lines of row k's list and its particle's record.
+template <int D, class Record>
+[[gnu::always_inline]] inline void prefetch_row(const NeighborList<D>& nl, std::uint32_t k,
+                                                const Record* pos) {
+    const std::uint32_t* ahead = nl.begin(k);
+    __builtin_prefetch(ahead);
+    if (nl.count(k) > 16) __builtin_prefetch(ahead + 16); // (within the row)
+    __builtin_prefetch(&pos[k]);
 }
 
 // The SIMD kernel for one radius and one evaluator (the common case): four candidates at
@@ -227,13 +250,7 @@ template <int D, class Pair, bool Padded>
         // rows go in colour-block order, not in storage order, so a row's list starts
         // where the hardware prefetcher did not look, and the row's first loads waited
         // on it (in.lj 1.03 with this alone, docs/performance.md).
-        if (r + 2 < rows.size()) {
-            const std::uint32_t k = rows[r + 2];
-            const std::uint32_t* ahead = nl.begin(k);
-            __builtin_prefetch(ahead);
-            if (nl.count(k) > 16) __builtin_prefetch(ahead + 16); // (within the row)
-            __builtin_prefetch(&pos[k]);
-        }
+        if (r + 2 < rows.size()) prefetch_row(nl, rows[r + 2], pos);
         const Vec<D> ri = pos[i];
         const double rsum = 2.0 * in.table[in.species[i]].radius;
         bool interior = true;

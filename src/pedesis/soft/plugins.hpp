@@ -8,6 +8,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ template <int D> class ForceTerm {
     // wall, inside its sigma (1)"), with its fix; empty if none starts there.
     virtual std::string start_overlap(const SoftState<D>&) const { return {}; }
     virtual void add_forces(SoftState<D>& s, const NeighborList<D>& nl) const = 0;
+    // The precision its pair rows compute in for this state (s.pair_precision where they
+    // can: soft/pair_rows_mixed.hpp); none for a term without pair rows.
+    virtual std::optional<Precision> rows_precision(const SoftState<D>&) const {
+        return std::nullopt;
+    }
     virtual void add_totals(const SoftState<D>&, const NeighborList<D>&, PairTotals&) const {}
     // The pair part of the heat flux ([transport]'s thermal conductivity): adds each pair's
     // energy u_ij, half to each particle, to energy[i], and (1/2) r_ij (F_ij . (v_i + v_j))

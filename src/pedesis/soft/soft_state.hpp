@@ -9,6 +9,7 @@
 #include "pedesis/core/box.hpp"
 #include "pedesis/core/frame.hpp"
 #include "pedesis/core/particles.hpp"
+#include "pedesis/core/precision.hpp"
 
 #include <array>
 #include <cstdint>
@@ -40,6 +41,9 @@ template <int D> struct SoftState {
     // (NeighborList::thread_share_bounds, core/chunk_shares.hpp). A hint for speed only:
     // where it no longer fits (another particle count or thread count), equal shares.
     std::vector<std::int64_t> thread_shares;
+    // The pair rows' precision (core/precision.hpp): a setting of the run, not a state
+    // of its particles (checkpoints do not hold it; the config does).
+    Precision pair_precision = Precision::full;
 
     std::size_t size() const { return p.size(); }
     // The particles this process integrates: indices [0, owned()).
