@@ -24,9 +24,11 @@
 #              -DGMX_BUILD_HELP=OFF -DGMX_BUILD_MANUAL=OFF
 #        nice -n 19 make -j$GMX_JOBS && nice -n 19 make install
 #      giving $GMX_PREFIX/install/bin/gmx (mixed precision) and gmx_d (double), g++ 12.2
-#      with GROMACS's Release flags (-O3 and its SIMD -m flags). On 2 shared cores the
-#      mixed build took about 50 minutes; each precision's wall time is written to
-#      $GMX_PREFIX/build-PREC.seconds and its log to $GMX_PREFIX/build-PREC.log.
+#      with GROMACS's Release flags (-O3 -funroll-all-loops and its SIMD -m flags; for
+#      AVX_512: -mavx512f -mfma -mavx512vl -mavx512dq -mavx512bw). On 2 cores shared
+#      with other work (load 2-4) the mixed build took 21 minutes, the double one 20;
+#      each precision's wall time is written to $GMX_PREFIX/build-PREC.seconds and its
+#      log to $GMX_PREFIX/build-PREC.log.
 #
 # The system (lj_start_gromacs.py, gromacs_lj3d_inlj.mdp): in.lj in GROMACS units with an
 # argon-like sigma = 0.34 nm, epsilon = 0.996 kJ/mol, m = 39.948 u, so
@@ -493,8 +495,9 @@ col() { # variant code column-number -> values
 }
 summary_lines=()
 pedesis_toml "$pdir/pedesis" "$STEPS" "$STEPS"
+nstcalc=$((STEPS < 100 ? STEPS : 100))
 for v in "${variants[@]}"; do
-    gmx_tpr "$v" "$pdir/$v" "$STEPS" 100
+    gmx_tpr "$v" "$pdir/$v" "$STEPS" "$nstcalc"
     echo "== $v: $(mdrun_cmd "$v")   ($(basename "$(var_mdp "$v")"))"
     printf '%-4s %9s %9s %7s %10s %10s %7s %9s %9s\n' pair "gmx cpu" "ped cpu" ratio \
         "gmx window" "ped window" ratio "gmx srch" "gmx force"
