@@ -572,6 +572,8 @@ inline std::string run_config_text(const std::uint8_t* data, std::size_t size) {
     }
     add_ensembles(c, dynamics, t);
     add_hard_drives(c, dynamics, wall, t);
+    // the soft engine's float pair rows (top level: before the first table)
+    if (soft && c.sometimes(64)) t.insert(t.find("[box]\n"), "precision = \"mixed\"\n");
     return t;
 }
 

@@ -106,6 +106,7 @@
 #   START          lammps or python (the start's maker; see above)   [lammps if lmp runs]
 #   LMP            LAMMPS binary for START=lammps                    [lmp]
 #   PEDESIS        pedesis binary                                    [<repo>/build/pedesis]
+#   PEDESIS_PRECISION  pairs: pedesis's --precision, double or mixed  [double]
 #   SCRATCH        scratch directory outside the repository          [mktemp -d]
 #   KEEP_SCRATCH   1 = keep it (start, inputs, logs, md.log files)
 #   RESULTS        optional path: copy the per-run TSV (pairs) there
@@ -125,6 +126,9 @@ repo_root=$(cd "$script_dir/../.." && pwd -P)
 source "$script_dir/bench_common.sh"
 
 MODE=${1:-}
+PEDESIS_PRECISION=${PEDESIS_PRECISION:-double}
+[[ $PEDESIS_PRECISION == double || $PEDESIS_PRECISION == mixed ]] ||
+    die "PEDESIS_PRECISION must be double or mixed, not '$PEDESIS_PRECISION'"
 GMX_PREFIX=${GMX_PREFIX:-/work/peers/gromacs}
 GMX_PRECISIONS=${GMX_PRECISIONS:-"mixed double"}
 GMX_SIMD=${GMX_SIMD:-}
@@ -380,7 +384,7 @@ echo "cpu:       ${cpu:-unknown}  ($(nproc) cores; load $(cut -d' ' -f1-3 /proc/
 for v in "${usable[@]}"; do
     printf '%-10s %s: %s\n' "$v:" "$(var_bin "$v")" "$(gmx_desc "$(var_bin "$v")")"
 done
-echo "pedesis:   $PEDESIS @ $ped_rev$ped_dirty${ped_flags:+, $ped_flags}"
+echo "pedesis:   $PEDESIS @ $ped_rev$ped_dirty${ped_flags:+, $ped_flags}, --precision $PEDESIS_PRECISION"
 echo "start:     made by $START (sigma $SIGMA nm, epsilon $EPSILON kJ/mol, m $MASS u)"
 make_start
 
@@ -518,7 +522,7 @@ for v in "${variants[@]}"; do
         p="$pdir/pedesis/run.$v.$i"
         rm -rf -- "$p"
         (cd "$pdir/pedesis" && timed "pedesis (pair $i)" "run.$v.$i.log" "run.$v.$i.time" \
-            "$PEDESIS" run run.toml --out "run.$v.$i")
+            "$PEDESIS" run run.toml --out "run.$v.$i" --precision "$PEDESIS_PRECISION")
         sj="$p/summary.json"
         [[ -f $sj ]] || die "pedesis wrote no summary.json ($pdir/pedesis/run.$v.$i.log)"
         [[ $(jkey steps "$sj") == "$STEPS" && $(jkey particles "$sj") == "$NATOMS" ]] ||

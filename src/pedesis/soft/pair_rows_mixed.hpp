@@ -2,9 +2,10 @@
 // The pair rows in mixed precision (`precision = "mixed"`): positions copied to floats,
 // the pair math and the per-particle force sums in float, eight candidates per vector
 // (twice the doubles' four in the same registers); the forces then added to the state's
-// double forces, which the integrators step in double. Energies and virials are not
-// computed here: the totals (PairForce::add_totals) stay in double from the double
-// positions.
+// double forces, which the integrators step in double. The AVX-512 set runs the same
+// eight lanes: sixteen (one zmm, the transposes over four 128-bit quarters) ran in.lj at
+// 0.68x the speed of double here (docs/performance.md, "Mixed precision"). Energies and virials are
+// not computed here: the totals (PairForce::add_totals) stay in double from the double positions.
 //
 // The rows of one radius and one evaluator, with the AVX2 and AVX-512 sets (the common
 // case); other rows (several radii or evaluators, the SSE2 set) run in double, and the
@@ -59,37 +60,55 @@ transpose_to_neighbours(const lanes8f (&f)[3]) {
     return {low(r04), low(r15), low(r26), low(r37), high(r04), high(r15), high(r26), high(r37)};
 }
 
-template <class Pair>
-[[gnu::always_inline]] inline lanes8f lanes_force_over_r(const Pair& pair, lanes8f r2,
-                                                         double rsum) {
+// The vector and mask types of W float lanes.
+template <int W> struct FloatLanes;
+template <> struct FloatLanes<8> {
+    using V = lanes8f;
+    using M = mask8;
+};
+
+// The W lanes summed in a fixed order (pairs, then pairs of pairs, ...).
+template <class V, int W> [[gnu::always_inline]] inline float sum_lanes(const V& v) {
+    float part[W];
+    for (int l = 0; l < W; ++l) part[l] = v[l];
+    for (int width = W / 2; width >= 1; width /= 2)
+        for (int l = 0; l < width; ++l) part[l] = part[2 * l] + part[2 * l + 1];
+    return part[0];
+}
+
+template <class Pair, class V>
+[[gnu::always_inline]] inline V lanes_force_over_r(const Pair& pair, V r2, double rsum) {
     if constexpr (requires { pair.force_over_r_at(r2, rsum); })
         return pair.force_over_r_at(lane_sqrt(r2), rsum);
     else
         return pair.force_over_r(r2, rsum);
 }
 
-// pair_rows_lanes in float, eight candidates at a time (see there for the prefetch and
-// the tail's repeated candidate).
-template <int D, class Pair>
+// pair_rows_lanes in float, W candidates at a time (see there for the prefetch and the
+// tail's repeated candidate).
+template <int W, int D, class Pair>
 [[gnu::always_inline]] inline void pair_rows_mixed(const MixedRowsInput<D, Pair>& in,
                                                    std::span<const std::uint32_t> rows) {
+    using V = typename FloatLanes<W>::V;
+    using M = typename FloatLanes<W>::M;
     const PairRowsInput<D, Pair>& base = *in.rows;
     const Padded3f* pos = in.position;
     Padded3f* force = in.force;
     const NeighborList<D>& nl = *base.list;
     const Pair pair = base.pairs[0]; // a copy (pair_rows_lanes says why)
-    const lanes8f rc2 = lanes8f{} + static_cast<float>(base.range2);
-    lanes8f half[D], length[D];
+    const V rc2 = V{} + static_cast<float>(base.range2);
+    V half[D], length[D];
     for (int a = 0; a < D; ++a) {
         const bool periodic = base.box->periodic(a);
-        half[a] = lanes8f{} + (periodic ? static_cast<float>(base.box->hi(a))
-                                        : std::numeric_limits<float>::infinity());
-        length[a] = lanes8f{} + (periodic ? static_cast<float>(base.box->length(a)) : 0.0f);
+        half[a] = V{} + (periodic ? static_cast<float>(base.box->hi(a))
+                                  : std::numeric_limits<float>::infinity());
+        length[a] = V{} + (periodic ? static_cast<float>(base.box->length(a)) : 0.0f);
     }
     const bool sheared = base.box->sheared();
-    const lanes8f offset = lanes8f{} + static_cast<float>(base.box->shear_offset());
-    const mask8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-    const lanes8f one = lanes8f{} + 1.0f;
+    const V offset = V{} + static_cast<float>(base.box->shear_offset());
+    M lane;
+    for (int l = 0; l < W; ++l) lane[l] = l;
+    const V one = V{} + 1.0f;
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const std::uint32_t i = rows[r];
         if (r + 2 < rows.size()) prefetch_row(nl, rows[r + 2], pos);
@@ -98,48 +117,45 @@ template <int D, class Pair>
         for (int a = 0; a < D; ++a)
             interior = interior && std::abs(base.position[i][a]) < base.inner[a];
         const Padded3f ri = pos[i];
-        lanes8f fi[D] = {};
-        auto eight = [&]<bool Tail>(const std::uint32_t* it, std::ptrdiff_t left)
+        V fi[D] = {};
+        auto group = [&]<bool Tail>(const std::uint32_t* it, std::ptrdiff_t left)
             __attribute__((always_inline)) {
-            std::uint32_t j[8];
-            for (int l = 0; l < 8; ++l) j[l] = Tail ? it[l < left ? l : 0] : it[l];
-            lanes4f pj[8];
-            for (int l = 0; l < 8; ++l) pj[l] = load_padded(pos[j[l]]);
+            std::uint32_t j[W];
+            for (int l = 0; l < W; ++l) j[l] = Tail ? it[l < left ? l : 0] : it[l];
+            lanes4f pj[W];
+            for (int l = 0; l < W; ++l) pj[l] = load_padded(pos[j[l]]);
             const auto xyz = transpose_to_axes(pj);
-            lanes8f d[D];
+            V d[D];
             for (int a = 0; a < D; ++a) d[a] = ri.c[a] - xyz[a];
             if (sheared && !interior) {
-                const mask8 up = d[1] > half[1], down = d[1] < -half[1];
-                d[1] = d[1] - select(up, length[1], lanes8f{}) + select(down, length[1], lanes8f{});
-                d[0] = d[0] - select(up, offset, lanes8f{}) + select(down, offset, lanes8f{});
+                const M up = d[1] > half[1], down = d[1] < -half[1];
+                d[1] = d[1] - select(up, length[1], V{}) + select(down, length[1], V{});
+                d[0] = d[0] - select(up, offset, V{}) + select(down, offset, V{});
             }
             if (!interior)
                 for (int a = 0; a < D; ++a) {
-                    d[a] = d[a] - select(d[a] > half[a], length[a], lanes8f{});
-                    d[a] = d[a] + select(d[a] < -half[a], length[a], lanes8f{});
+                    d[a] = d[a] - select(d[a] > half[a], length[a], V{});
+                    d[a] = d[a] + select(d[a] < -half[a], length[a], V{});
                 }
-            lanes8f r2 = d[0] * d[0];
+            V r2 = d[0] * d[0];
             for (int a = 1; a < D; ++a) r2 += d[a] * d[a];
-            mask8 active = r2 < rc2;
+            M active = r2 < rc2;
             if constexpr (Tail) active &= lane < static_cast<std::int32_t>(left);
-            const lanes8f fr =
-                select(active, lanes_force_over_r(pair, select(active, r2, one), rsum), lanes8f{});
-            lanes8f fa[3] = {};
+            const V fr =
+                select(active, lanes_force_over_r(pair, select(active, r2, one), rsum), V{});
+            V fa[3] = {};
             for (int a = 0; a < D; ++a) {
                 fa[a] = fr * d[a];
                 fi[a] += fa[a];
             }
             const auto per_neighbour = transpose_to_neighbours(fa);
-            for (int l = 0; l < 8; ++l) sub_padded(force[j[l]], per_neighbour[l]);
+            for (int l = 0; l < W; ++l) sub_padded(force[j[l]], per_neighbour[l]);
         };
         const std::uint32_t* it = nl.begin(i);
         const std::uint32_t* const end = nl.end(i);
-        for (; end - it >= 8; it += 8) eight.template operator()<false>(it, 8);
-        if (it < end) eight.template operator()<true>(it, end - it);
-        for (int a = 0; a < D; ++a) {
-            const lanes8f& v = fi[a];
-            force[i].c[a] += ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7]));
-        }
+        for (; end - it >= W; it += W) group.template operator()<false>(it, W);
+        if (it < end) group.template operator()<true>(it, end - it);
+        for (int a = 0; a < D; ++a) force[i].c[a] += sum_lanes<V, W>(fi[a]);
     }
 }
 
@@ -147,12 +163,12 @@ template <int D, class Pair>
 template <int D, class Pair>
 PEDESIS_SIMD_TARGET_AVX2 void pair_rows_mixed_avx2(const MixedRowsInput<D, Pair>& in,
                                                    std::span<const std::uint32_t> rows) {
-    pair_rows_mixed<D, Pair>(in, rows);
+    pair_rows_mixed<8, D, Pair>(in, rows);
 }
 template <int D, class Pair>
 PEDESIS_SIMD_TARGET_AVX512 void pair_rows_mixed_avx512(const MixedRowsInput<D, Pair>& in,
                                                        std::span<const std::uint32_t> rows) {
-    pair_rows_mixed<D, Pair>(in, rows);
+    pair_rows_mixed<8, D, Pair>(in, rows);
 }
 #endif
 
